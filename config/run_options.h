@@ -1,0 +1,36 @@
+#pragma once
+// What the command line asked for. Values that are also scene keys are optional overrides:
+// an empty optional means "keep the scene's value".
+#include <cstdint>
+#include <optional>
+#include <string>
+
+namespace sl {
+
+enum class Strategy { Single, FrameByFrame };
+
+struct RenderOverrides {
+    std::optional<int> frames, passes, width, height;
+    std::optional<int64_t> photons;
+    std::optional<uint64_t> seed;
+    std::optional<bool> camera_tof;
+    std::optional<std::string> emission;  // "constant" | "pulse" | "pulse:WIDTH_NS" (validated)
+};
+
+struct RunOptions {
+    enum class Command { Render, Info, Help, Version };
+    Command command = Command::Render;
+    std::string scene_path;  // empty: built-in default demo scene
+    std::string output;      // video path, "-" for YUV4MPEG2 on stdout; empty: no video
+    bool output_given = false;
+    std::string exr_dir, png_dir, stats_path;
+    std::optional<int> sections;
+    std::optional<uint64_t> max_memory_bytes;
+    std::optional<double> exposure;  // linear multiplier; default from the steady image
+    Strategy strategy = Strategy::Single;
+    int threads = 0;  // 0: all cores
+    bool progress = true;  // shown only when stderr is a terminal
+    RenderOverrides overrides;
+};
+
+}  // namespace sl

@@ -1,0 +1,110 @@
+#pragma once
+// The scene and its settings as plain structs, validated and already in SI units (meters,
+// nanoseconds, per-meter coefficients). Everything downstream reads only these.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/vec3.h"
+
+namespace sl {
+
+struct CameraDesc {
+    Vec3 position{0, 1, 3.5f};
+    Vec3 look_at{0, 1, 0};
+    Vec3 up{0, 1, 0};
+    float vfov_deg = 40;
+    int width = 256;
+    int height = 256;
+};
+
+enum class MaterialType { Diffuse, Mirror, Dielectric };
+
+struct MaterialDesc {
+    std::string name;
+    MaterialType type = MaterialType::Diffuse;
+    Vec3 albedo{0.8f};       // diffuse
+    Vec3 reflectance{1.0f};  // mirror
+    float ior = 1.5f;        // dielectric
+};
+
+enum class ShapeType { Quad, Box, Sphere, Mesh };
+
+struct ShapeDesc {
+    ShapeType type = ShapeType::Quad;
+    int material = 0;  // index into SceneDesc::materials
+    // quad
+    Vec3 corner, edge1, edge2;
+    // box
+    Vec3 min, max;
+    // sphere
+    Vec3 center;
+    float radius = 0;
+    // mesh: absolute path (resolved against the scene file's folder); the transform is
+    // applied as scale, then rotation (X, then Y, then Z, degrees), then translation (meters).
+    std::string file;
+    Vec3 translate;
+    float scale = 1;
+    Vec3 rotate_deg;
+};
+
+enum class LightType { Point, Quad, Spot, Laser };
+
+struct LightDesc {
+    LightType type = LightType::Point;
+    Vec3 position;              // point, spot, laser
+    Vec3 corner, edge1, edge2;  // quad
+    Vec3 direction{0, -1, 0};   // spot, laser (unit length after validation)
+    Vec3 power;                 // W: point, spot, laser
+    Vec3 radiance;              // W sr^-1 m^-2: quad (front side = edge1 x edge2)
+    float cone_deg = 30;        // spot: half-angle of the cone
+    float radius = 0.002f;      // laser beam radius (m)
+};
+
+struct MediumDesc {
+    bool present = false;
+    Vec3 sigma_a, sigma_s;  // per meter
+    float g = 0;
+    bool has_bounds = false;
+    Vec3 bounds_min, bounds_max;
+};
+
+struct TimeDesc {
+    double start_ns = 0;
+    double end_ns = 12;
+    int frames = 48;
+    double fps = 24;
+};
+
+enum class EmissionMode { Constant, Pulse };
+
+struct EmissionDesc {
+    EmissionMode mode = EmissionMode::Constant;
+    double width_ns = 0;  // pulse width; 0 means one frame width (end-start)/frames
+};
+
+struct RenderDesc {
+    int passes = 64;
+    int64_t photons_per_pass = 200000;
+    int max_depth = 8;
+    float radius = 0;  // initial gather radius in meters; 0 means automatic
+    float alpha = 0.7f;
+    bool camera_tof = false;
+    uint64_t seed = 1;
+    Vec3 ambient;
+};
+
+struct SceneDesc {
+    std::string source;  // file path, or "<default>" for the built-in demo
+    double meters_per_unit = 1;
+    CameraDesc camera;
+    std::vector<MaterialDesc> materials;
+    std::vector<ShapeDesc> shapes;
+    std::vector<LightDesc> lights;
+    MediumDesc medium;
+    TimeDesc time;
+    EmissionDesc emission;
+    RenderDesc render;
+};
+
+}  // namespace sl
