@@ -1,0 +1,116 @@
+#include "core/light_set.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/sampling.h"
+
+namespace sl {
+
+LightSet::LightSet(const SceneDesc& scene) {
+    for (const LightDesc& d : scene.lights) {
+        Light l;
+        l.desc = d;
+        switch (d.type) {
+        case LightType::Point:
+            l.power = d.power;
+            l.intensity = d.power / (4 * kPi);
+            break;
+        case LightType::Spot: {
+            l.power = d.power;
+            l.cos_cone = std::cos(d.cone_deg * kPi / 180.0f);
+            l.intensity = d.power / (2 * kPi * (1 - l.cos_cone));
+            l.desc.direction = normalize(d.direction);
+            break;
+        }
+        case LightType::Laser:
+            l.power = d.power;
+            l.desc.direction = normalize(d.direction);
+            break;
+        case LightType::Quad: {
+            Vec3 c = cross(d.edge1, d.edge2);
+            l.area = length(c);
+            l.normal = c / l.area;
+            l.power = d.radiance * (kPi * l.area);
+            break;
+        }
+        }
+        lights_.push_back(l);
+        total_power_ += average(l.power);
+        cdf_.push_back(total_power_);
+    }
+    for (float& c : cdf_) c = total_power_ > 0 ? c / total_power_ : 0;
+}
+
+const LightSet::Light& LightSet::pick(float u, float& probability) const {
+    size_t i = static_cast<size_t>(std::upper_bound(cdf_.begin(), cdf_.end(), u) - cdf_.begin());
+    i = std::min(i, lights_.size() - 1);
+    while (i > 0 && cdf_[i] == cdf_[i - 1]) --i;  // never pick a light without power
+    probability = cdf_[i] - (i > 0 ? cdf_[i - 1] : 0.0f);
+    return lights_[i];
+}
+
+EmittedPhoton LightSet::emit(Rng& rng) const {
+    float p = 1;
+    const Light& l = pick(rng.uniform(), p);
+    float u1 = rng.uniform(), u2 = rng.uniform();
+    EmittedPhoton e;
+    e.flux = l.power / p;
+    e.direct_by_photons = false;
+    switch (l.desc.type) {
+    case LightType::Point:
+        e.origin = l.desc.position;
+        e.direction = sample_uniform_sphere(u1, u2);
+        break;
+    case LightType::Spot:
+        e.origin = l.desc.position;
+        e.direction = sample_uniform_cone(l.desc.direction, l.cos_cone, u1, u2);
+        break;
+    case LightType::Laser: {
+        float x, y;
+        sample_disk(u1, u2, x, y);
+        Vec3 t, b;
+        make_basis(l.desc.direction, t, b);
+        e.origin = l.desc.position + (t * x + b * y) * l.desc.radius;
+        e.direction = l.desc.direction;
+        e.direct_by_photons = true;
+        break;
+    }
+    case LightType::Quad:
+        e.origin = l.desc.corner + l.desc.edge1 * u1 + l.desc.edge2 * u2;
+        e.direction = sample_cosine_hemisphere(l.normal, rng.uniform(), rng.uniform());
+        break;
+    }
+    return e;
+}
+
+bool LightSet::sample_direct(size_t i, Vec3 p, Vec3 n, float u1, float u2, DirectLightSample& out) const {
+    const Light& l = lights_[i];
+    Vec3 target;
+    switch (l.desc.type) {
+    case LightType::Laser: return false;  // a collimated beam is reached by photons only
+    case LightType::Point:
+    case LightType::Spot: target = l.desc.position; break;
+    case LightType::Quad: target = l.desc.corner + l.desc.edge1 * u1 + l.desc.edge2 * u2; break;
+    }
+    Vec3 v = target - p;
+    float d2 = dot(v, v);
+    if (!(d2 > 0)) return false;
+    float d = std::sqrt(d2);
+    Vec3 wi = v / d;
+    float cos_p = dot(n, wi);
+    if (cos_p <= 0) return false;
+    if (l.desc.type == LightType::Quad) {
+        float cos_l = -dot(l.normal, wi);
+        if (cos_l <= 0) return false;
+        out.irradiance = l.desc.radiance * (cos_l * cos_p * l.area / d2);
+    } else {
+        if (l.desc.type == LightType::Spot && dot(-wi, l.desc.direction) < l.cos_cone) return false;
+        out.irradiance = l.intensity * (cos_p / d2);
+    }
+    out.to_light = wi;
+    out.distance = d;
+    return true;
+}
+
+}  // namespace sl

@@ -1,0 +1,52 @@
+#pragma once
+// The scene's lights: photon emission (a light chosen in proportion to its power) and the
+// direct-light sample that the camera pass evaluates at each visible point.
+#include <vector>
+
+#include "config/scene_desc.h"
+#include "core/rng.h"
+
+namespace sl {
+
+struct EmittedPhoton {
+    Vec3 origin, direction;
+    Vec3 flux;             // W carried by this one emitted path (before dividing by the count)
+    bool direct_by_photons;  // the light's direct light is gathered, not computed (lasers)
+};
+
+struct DirectLightSample {
+    Vec3 irradiance;  // W/m^2 arriving at the point from this sample, before visibility
+    Vec3 to_light;    // unit direction from the point towards the light sample
+    float distance = 0;
+};
+
+class LightSet {
+public:
+    explicit LightSet(const SceneDesc& scene);
+
+    bool has_emission() const { return total_power_ > 0; }
+    float total_power() const { return total_power_; }
+    size_t count() const { return lights_.size(); }
+
+    EmittedPhoton emit(Rng& rng) const;
+    // One sample of light i's direct irradiance at p (unit normal n facing the viewer); false
+    // when light i cannot reach p this way (back side, outside a spot's cone, a laser).
+    bool sample_direct(size_t i, Vec3 p, Vec3 n, float u1, float u2, DirectLightSample& out) const;
+
+private:
+    struct Light {
+        LightDesc desc;
+        Vec3 normal;        // quad: unit front normal
+        float area = 0;     // quad
+        float cos_cone = 1;  // spot
+        Vec3 intensity;     // point/spot: W/sr
+        Vec3 power;         // RGB power in W
+    };
+    const Light& pick(float u, float& probability) const;
+
+    std::vector<Light> lights_;
+    std::vector<float> cdf_;  // cumulative choice probability by average power
+    float total_power_ = 0;
+};
+
+}  // namespace sl

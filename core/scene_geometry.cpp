@@ -1,0 +1,133 @@
+#include "core/scene_geometry.h"
+
+#include <cstring>
+#include <limits>
+
+#include "core/errors.h"
+#include "core/mesh_loader.h"
+
+namespace sl {
+namespace {
+
+void embree_error(void*, RTCError code, const char* str) {
+    // Errors are turned into exceptions where the call returns; this only keeps Embree quiet.
+    (void)code;
+    (void)str;
+}
+
+}  // namespace
+
+SceneGeometry::SceneGeometry(const SceneDesc& desc) {
+    device_ = rtcNewDevice("threads=0");
+    if (!device_) throw RuntimeFailure("cannot create the Embree device (error " +
+                                       std::to_string(rtcGetDeviceError(nullptr)) + ")");
+    rtcSetDeviceErrorFunction(device_, embree_error, nullptr);
+    scene_ = rtcNewScene(device_);
+    rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
+    rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
+
+    for (const ShapeDesc& s : desc.shapes) {
+        if (s.type == ShapeType::Sphere) {
+            add_sphere(s.center, s.radius, s.material);
+        } else {
+            TriangleSoup soup = triangulate_shape(s, desc.source);
+            add_triangles(soup.vertices, soup.indices, s.material, -1);
+        }
+    }
+    // Quad lights are surfaces too: the camera sees their front, photons stop on them.
+    for (size_t i = 0; i < desc.lights.size(); ++i) {
+        const LightDesc& l = desc.lights[i];
+        if (l.type != LightType::Quad) continue;
+        std::vector<Vec3> v{l.corner, l.corner + l.edge1, l.corner + l.edge1 + l.edge2, l.corner + l.edge2};
+        add_triangles(v, {0, 1, 2, 0, 2, 3}, -1, static_cast<int>(i));
+    }
+    rtcCommitScene(scene_);
+    if (rtcGetDeviceError(device_) != RTC_ERROR_NONE)
+        throw RuntimeFailure("Embree could not build the scene");
+    if (bmin_.x > bmax_.x) bmin_ = bmax_ = Vec3(0);
+}
+
+SceneGeometry::~SceneGeometry() {
+    if (scene_) rtcReleaseScene(scene_);
+    if (device_) rtcReleaseDevice(device_);
+}
+
+void SceneGeometry::add_triangles(const std::vector<Vec3>& v, const std::vector<uint32_t>& idx,
+                                  int material, int light) {
+    RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0,
+                                                           RTC_FORMAT_FLOAT3, 3 * sizeof(float), v.size()));
+    auto* ib = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0,
+                                                              RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), idx.size() / 3));
+    if (!vb || !ib) throw RuntimeFailure("Embree could not allocate a mesh buffer");
+    for (size_t i = 0; i < v.size(); ++i) {
+        vb[3 * i] = v[i].x; vb[3 * i + 1] = v[i].y; vb[3 * i + 2] = v[i].z;
+        bmin_ = vmin(bmin_, v[i]);
+        bmax_ = vmax(bmax_, v[i]);
+    }
+    std::memcpy(ib, idx.data(), idx.size() * sizeof(uint32_t));
+    rtcCommitGeometry(g);
+    unsigned id = rtcAttachGeometry(scene_, g);
+    rtcReleaseGeometry(g);
+    if (geom_material_.size() <= id) { geom_material_.resize(id + 1, -1); geom_light_.resize(id + 1, -1); }
+    geom_material_[id] = material;
+    geom_light_[id] = light;
+    triangles_ += idx.size() / 3;
+}
+
+void SceneGeometry::add_sphere(Vec3 c, float r, int material) {
+    RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_SPHERE_POINT);
+    auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0,
+                                                           RTC_FORMAT_FLOAT4, 4 * sizeof(float), 1));
+    if (!vb) throw RuntimeFailure("Embree could not allocate a sphere buffer");
+    vb[0] = c.x; vb[1] = c.y; vb[2] = c.z; vb[3] = r;
+    rtcCommitGeometry(g);
+    unsigned id = rtcAttachGeometry(scene_, g);
+    rtcReleaseGeometry(g);
+    if (geom_material_.size() <= id) { geom_material_.resize(id + 1, -1); geom_light_.resize(id + 1, -1); }
+    geom_material_[id] = material;
+    bmin_ = vmin(bmin_, c - Vec3(r));
+    bmax_ = vmax(bmax_, c + Vec3(r));
+}
+
+bool SceneGeometry::intersect(Vec3 o, Vec3 d, float tnear, float tfar, SurfaceHit& hit) const {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    RTCRayHit rh;
+    rh.ray.org_x = o.x; rh.ray.org_y = o.y; rh.ray.org_z = o.z;
+    rh.ray.dir_x = d.x; rh.ray.dir_y = d.y; rh.ray.dir_z = d.z;
+    rh.ray.tnear = tnear;
+    rh.ray.tfar = tfar;
+    rh.ray.mask = 0xffffffffu;
+    rh.ray.flags = 0;
+    rh.ray.time = 0;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(scene_, &ctx, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+    hit.t = rh.ray.tfar;
+    hit.position = o + d * hit.t;
+    Vec3 n{rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z};
+    float len = length(n);
+    hit.normal = len > 0 ? n / len : Vec3(0, 0, 1);
+    hit.material = geom_material_[rh.hit.geomID];
+    hit.light = geom_light_[rh.hit.geomID];
+    return true;
+}
+
+bool SceneGeometry::occluded(Vec3 o, Vec3 d, float tnear, float tfar) const {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    RTCRay r;
+    r.org_x = o.x; r.org_y = o.y; r.org_z = o.z;
+    r.dir_x = d.x; r.dir_y = d.y; r.dir_z = d.z;
+    r.tnear = tnear;
+    r.tfar = tfar;
+    r.mask = 0xffffffffu;
+    r.flags = 0;
+    r.time = 0;
+    rtcOccluded1(scene_, &ctx, &r);
+    return r.tfar < 0;  // Embree sets tfar = -inf on a hit
+}
+
+}  // namespace sl

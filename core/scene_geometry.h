@@ -1,0 +1,55 @@
+#pragma once
+// The scene's surfaces in an Embree BVH, with what the renderer needs at a hit: the material
+// and, for a quad light's own surface, which light it is.
+#include <embree3/rtcore.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "config/scene_desc.h"
+
+namespace sl {
+
+struct SurfaceHit {
+    float t = 0;
+    Vec3 position;
+    Vec3 normal;      // unit geometric normal (not oriented)
+    int material = -1;  // index into SceneDesc::materials; -1 for a light's surface
+    int light = -1;     // index into SceneDesc::lights when the surface is a quad light
+};
+
+class SceneGeometry {
+public:
+    explicit SceneGeometry(const SceneDesc& scene);
+    ~SceneGeometry();
+    SceneGeometry(const SceneGeometry&) = delete;
+    SceneGeometry& operator=(const SceneGeometry&) = delete;
+
+    // Closest hit along o + t d for t in (tnear, tfar); false on a miss.
+    bool intersect(Vec3 o, Vec3 d, float tnear, float tfar, SurfaceHit& hit) const;
+    // True when anything blocks o + t d for t in (tnear, tfar).
+    bool occluded(Vec3 o, Vec3 d, float tnear, float tfar) const;
+
+    Vec3 bounds_min() const { return bmin_; }
+    Vec3 bounds_max() const { return bmax_; }
+    size_t triangle_count() const { return triangles_; }
+
+private:
+    void add_triangles(const std::vector<Vec3>& v, const std::vector<uint32_t>& idx, int material, int light);
+    void add_sphere(Vec3 center, float radius, int material);
+
+    RTCDevice device_ = nullptr;
+    RTCScene scene_ = nullptr;
+    std::vector<int> geom_material_, geom_light_;  // by Embree geometry ID
+    Vec3 bmin_{1e30f}, bmax_{-1e30f};
+    size_t triangles_ = 0;
+};
+
+// Offset that lifts a ray origin off the surface it leaves (scales with the coordinates).
+inline float ray_epsilon(Vec3 p, float t) {
+    float m = std::max(std::max(std::abs(p.x), std::abs(p.y)), std::max(std::abs(p.z), t));
+    return 64.0f * 1.1920929e-7f * std::max(m, 1e-3f);
+}
+
+}  // namespace sl

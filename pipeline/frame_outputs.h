@@ -1,0 +1,46 @@
+#pragma once
+// Where finished frames go: linear EXR files, tone-mapped PNGs and the video encoder. All of
+// them are opened (and checked) before rendering starts.
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "stages/output/video_encoder.h"
+
+namespace sl {
+
+struct OutputSettings {
+    std::string video;  // "" for none, "-" for stdout
+    std::string exr_dir, png_dir;
+    int width = 0, height = 0;
+    double fps = 24;
+    std::optional<double> exposure;              // fixed by the user
+    std::map<std::string, std::string> metadata;  // stored in every EXR header
+};
+
+class FrameOutputs {
+public:
+    explicit FrameOutputs(const OutputSettings& settings);  // opens the encoder, makes dirs
+
+    bool needs_exposure() const { return !exposure_ && (encoder_ || !settings_.png_dir.empty()); }
+    void set_exposure(double e) { exposure_ = e; }
+    std::optional<double> exposure() const { return exposure_; }
+
+    void write_frame(int index, const std::vector<float>& rgb);
+    void write_steady(const std::vector<float>& rgb);
+    void finish();  // closes the video so that it plays
+
+    double seconds_exr = 0, seconds_png = 0, seconds_video = 0;
+    int64_t frames_written = 0;
+
+private:
+    OutputSettings settings_;
+    std::optional<double> exposure_;
+    std::unique_ptr<VideoEncoder> encoder_;
+    std::vector<uint8_t> rgb8_;
+};
+
+}  // namespace sl

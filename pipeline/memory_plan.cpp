@@ -1,0 +1,88 @@
+#include "pipeline/memory_plan.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "core/errors.h"
+#include "stages/render/photon_map.h"
+#include "stages/render/section_buffer.h"
+
+namespace sl {
+
+int pulse_bucket_count(const SceneDesc& scene) {
+    if (scene.emission.mode != EmissionMode::Pulse || scene.emission.width_ns <= 0) return 1;
+    double delta = (scene.time.end_ns - scene.time.start_ns) / scene.time.frames;
+    return std::max(1, static_cast<int>(std::lround(scene.emission.width_ns / delta)));
+}
+
+static size_t pixel_count(const SceneDesc& s) {
+    return static_cast<size_t>(s.camera.width) * static_cast<size_t>(s.camera.height);
+}
+
+uint64_t section_buffer_bytes(const SceneDesc& scene, int sections) {
+    int frames = scene.time.frames;
+    int largest = (frames + sections - 1) / sections;
+    int slots = largest + pulse_bucket_count(scene) - 1 + 2;
+    return SectionBuffer::bytes_needed(pixel_count(scene), slots, !is_black(scene.render.ambient));
+}
+
+uint64_t fixed_overhead_bytes(const SceneDesc& scene) {
+    uint64_t pixels = pixel_count(scene);
+    // Visible points: 9 floats, a double, a depth and a flag per pixel.
+    uint64_t vps = pixels * (9 * 4 + 8 + 2 + 1);
+    // Photon map: a closed white room stores about albedo/(1-albedo) ~ 2.5 records per path;
+    // budget 4 (or max_depth - 1) records, each in a batch and sorted, with its position and
+    // slot, plus a hash table of twice the records.
+    uint64_t per_path = static_cast<uint64_t>(std::clamp(scene.render.max_depth - 1, 1, 4));
+    uint64_t records = static_cast<uint64_t>(scene.render.photons_per_pass) * per_path;
+    uint64_t photons = records * (2 * sizeof(PhotonRecord) + 3 * 4 + 4) + 4 * records * 2 * 4;
+    // Frames on their way out: a running sum (double), three float frames, an 8-bit frame, and
+    // the encoder's own look-ahead (x264 keeps some tens of frames in 4:2:0).
+    uint64_t frames = pixels * (3 * 8 + 3 * 3 * 4 + 3) + pixels * 3 / 2 * 48;
+    const uint64_t process = 48ull << 20;  // libraries, BVH of a modest scene, thread stacks
+    return vps + photons + frames + process;
+}
+
+MemoryPlan plan_memory(const SceneDesc& scene, const RunOptions& options) {
+    MemoryPlan plan;
+    plan.fixed_overhead_bytes = fixed_overhead_bytes(scene);
+    const int frames = scene.time.frames;
+    if (options.strategy == Strategy::FrameByFrame) {
+        plan.sections = frames;
+    } else if (options.sections) {
+        if (*options.sections < 1 || *options.sections > frames)
+            throw InputError("command line: --sections: must be between 1 and the number of frames (" +
+                             std::to_string(frames) + "), got " + std::to_string(*options.sections));
+        plan.sections = *options.sections;
+    } else if (options.max_memory_bytes) {
+        uint64_t budget = *options.max_memory_bytes;
+        uint64_t one_frame = section_buffer_bytes(scene, frames);
+        if (one_frame > budget)
+            throw InputError("command line: --max-memory: " + format_bytes(budget) +
+                             " cannot hold even one frame per section; that needs " + format_bytes(one_frame) +
+                             " of buffers (plus about " + format_bytes(plan.fixed_overhead_bytes) + " fixed)");
+        // The smallest K that fits; section sizes only change where ceil(F/K) does.
+        int k = 1;
+        while (k < frames && section_buffer_bytes(scene, k) > budget) ++k;
+        plan.sections = k;
+    }
+    plan.buffer_bytes_per_section = section_buffer_bytes(scene, plan.sections);
+    // Overlap encoding of one section with rendering the next only when both fit the budget
+    // (with no budget: when the buffers are small next to the machine-sized default of 2 GiB).
+    uint64_t budget = options.max_memory_bytes.value_or(2ull << 30);
+    plan.overlap = plan.sections > 1 && 2 * plan.buffer_bytes_per_section <= budget;
+    return plan;
+}
+
+std::string format_bytes(uint64_t bytes) {
+    char buf[64];
+    double b = static_cast<double>(bytes);
+    if (b >= 1024.0 * 1024 * 1024) std::snprintf(buf, sizeof buf, "%.2f GiB", b / (1024.0 * 1024 * 1024));
+    else if (b >= 1024.0 * 1024) std::snprintf(buf, sizeof buf, "%.1f MiB", b / (1024.0 * 1024));
+    else if (b >= 1024.0) std::snprintf(buf, sizeof buf, "%.1f KiB", b / 1024.0);
+    else std::snprintf(buf, sizeof buf, "%llu B", static_cast<unsigned long long>(bytes));
+    return buf;
+}
+
+}  // namespace sl

@@ -1,0 +1,158 @@
+#include "pipeline/render_pipeline.h"
+
+#include <tbb/flow_graph.h>
+
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <optional>
+
+#include "stages/output/tone_map.h"
+#include "stages/render/frame_assembly.h"
+
+namespace sl {
+namespace {
+
+namespace flow = tbb::flow;
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+struct Section {
+    SectionLayout layout;
+    SectionRun run;
+    std::optional<FrameAssembler> assembler;
+};
+using SectionPtr = std::shared_ptr<Section>;
+
+struct FrameJob {
+    SectionPtr section;
+    int frame = 0;
+};
+struct FrameImage {
+    SectionPtr section;
+    int frame = 0;
+    std::vector<float> rgb;
+};
+
+SectionLayout layout_for(const RenderContext& ctx, const MemoryPlan& plan, Strategy strategy, int index) {
+    SectionLayout l = make_section(ctx.timeline, ctx.pulse_buckets, plan.sections, index);
+    // The baseline renders every frame as a full, independent convergence, as the paper does.
+    if (strategy == Strategy::FrameByFrame) l.full_paths = true;
+    return l;
+}
+
+// A short steady-only convergence, so that the video's exposure is known before the first
+// section's frames are encoded (with one section, the section itself provides it).
+double exposure_from_preview(const RenderContext& ctx, SectionCounters& counters) {
+    SectionLayout l;
+    l.first_frame = l.end_frame = ctx.timeline.frames;
+    l.first_bucket = l.end_frame;
+    l.full_paths = true;
+    int passes = std::max(2, ctx.scene.render.passes / 8);
+    SectionRun run = render_section(ctx, l, passes, ctx.scene.render.photons_per_pass, counters);
+    FrameAssembler a(*run.buffer, EmissionMode::Constant, 1);
+    std::vector<float> rgb;
+    a.steady(rgb);
+    return exposure_from_steady(rgb.data(), ctx.width, ctx.height);
+}
+
+}  // namespace
+
+PipelineStats run_pipeline(const RenderContext& ctx, const MemoryPlan& plan, Strategy strategy,
+                           FrameOutputs& outputs, const ProgressFn& progress,
+                           const std::atomic<bool>& cancel) {
+    PipelineStats stats;
+    SectionCounters counters;
+    const int passes = ctx.scene.render.passes;
+    const int64_t photons_per_pass = ctx.scene.render.photons_per_pass;
+    const EmissionMode mode = ctx.scene.emission.mode;
+
+    if (plan.sections > 1 && outputs.needs_exposure()) {
+        auto t0 = Clock::now();
+        outputs.set_exposure(exposure_from_preview(ctx, counters));
+        stats.exposure_pass = since(t0);
+    }
+
+    flow::graph g;
+    int next_section = 0;
+    flow::input_node<int> sections(g, [&](tbb::flow_control& fc) -> int {
+        if (next_section >= plan.sections || cancel.load()) {
+            fc.stop();
+            return 0;
+        }
+        return next_section++;
+    });
+    flow::limiter_node<int> sections_alive(g, plan.overlap ? 2 : 1);
+    flow::function_node<int, SectionPtr> render(g, flow::serial, [&](int index) {
+        auto s = std::make_shared<Section>();
+        s->layout = layout_for(ctx, plan, strategy, index);
+        std::fprintf(stderr, "slowlight: section %d/%d, frames %d-%d: %s of time buckets\n", index + 1,
+                     plan.sections, s->layout.first_frame, s->layout.end_frame - 1,
+                     format_bytes(SectionBuffer::bytes_needed(ctx.pixels(), s->layout.slots(), ctx.has_ambient())).c_str());
+        s->run = render_section(ctx, s->layout, passes, photons_per_pass, counters,
+                                [&](int pass) { if (progress) progress(index, pass); },
+                                [&] { return cancel.load(); });
+        stats.render.camera += s->run.times.camera;
+        stats.render.photons += s->run.times.photons;
+        stats.render.gather += s->run.times.gather;
+        stats.photon_map_bytes = std::max(stats.photon_map_bytes, s->run.photon_map_bytes);
+        return s;
+    });
+    using Split = flow::multifunction_node<SectionPtr, std::tuple<FrameJob>>;
+    Split split(g, flow::serial, [&](const SectionPtr& s, Split::output_ports_type& out) {
+        for (int f = s->layout.first_frame; f < s->layout.end_frame; ++f) std::get<0>(out).try_put(FrameJob{s, f});
+    });
+    flow::queue_node<FrameJob> frame_queue(g);
+    flow::limiter_node<FrameJob> frames_alive(g, 2);
+    flow::function_node<FrameJob, FrameImage> assemble(g, flow::serial, [&](const FrameJob& job) {
+        auto t0 = Clock::now();
+        Section& s = *job.section;
+        if (!s.assembler) {
+            s.assembler.emplace(*s.run.buffer, mode, ctx.pulse_buckets);
+            if (s.layout.full_paths && s.layout.index == plan.sections - 1) {
+                std::vector<float> steady;
+                s.assembler->steady(steady);
+                if (outputs.needs_exposure()) outputs.set_exposure(exposure_from_steady(steady.data(), ctx.width, ctx.height));
+                outputs.write_steady(steady);
+            }
+        }
+        FrameImage img{job.section, job.frame, {}};
+        s.assembler->frame(job.frame, img.rgb);
+        stats.assembly += since(t0);
+        return img;
+    });
+    using Write = flow::multifunction_node<FrameImage, std::tuple<flow::continue_msg, flow::continue_msg>>;
+    Write write(g, flow::serial, [&](const FrameImage& img, Write::output_ports_type& out) {
+        auto t0 = Clock::now();
+        outputs.write_frame(img.frame, img.rgb);
+        stats.writing += since(t0);
+        bool last = img.frame + 1 == img.section->layout.end_frame;
+        if (last) {  // free the section's buckets before another section may allocate its own
+            ++stats.sections_done;
+            img.section->assembler.reset();
+            img.section->run.buffer.reset();
+        }
+        std::get<0>(out).try_put(flow::continue_msg());
+        if (last) std::get<1>(out).try_put(flow::continue_msg());
+    });
+
+    flow::make_edge(sections, sections_alive);
+    flow::make_edge(sections_alive, render);
+    flow::make_edge(render, split);
+    flow::make_edge(std::get<0>(split.output_ports()), frame_queue);
+    flow::make_edge(frame_queue, frames_alive);
+    flow::make_edge(frames_alive, assemble);
+    flow::make_edge(assemble, write);
+    flow::make_edge(flow::output_port<0>(write), frames_alive.decrementer());
+    flow::make_edge(flow::output_port<1>(write), sections_alive.decrementer());
+    sections.activate();
+    g.wait_for_all();
+
+    stats.photons = counters.photons.photons.load();
+    stats.photon_records = counters.photons.stored.load();
+    stats.rays = counters.photons.rays.load() + counters.camera.rays.load();
+    stats.interrupted = cancel.load();
+    return stats;
+}
+
+}  // namespace sl

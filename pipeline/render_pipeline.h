@@ -1,0 +1,36 @@
+#pragma once
+// The streaming frame pipeline, a TBB flow graph over sections and frames:
+//
+//   sections -> limiter(1 or 2 alive) -> render section (its own pass graph)
+//            -> split into frames -> queue -> limiter(2 frames) -> assemble -> write
+//                                                 ^ frame done        section done v
+//
+// Frames leave in order. A section's time buckets are freed as soon as its last frame is
+// written; with two sections alive the next section renders while this one is encoded.
+#include <atomic>
+#include <functional>
+
+#include "config/run_options.h"
+#include "pipeline/frame_outputs.h"
+#include "pipeline/memory_plan.h"
+#include "stages/render/render_context.h"
+#include "stages/render/section_renderer.h"
+
+namespace sl {
+
+struct PipelineStats {
+    StageTimes render;
+    double exposure_pass = 0, assembly = 0, writing = 0;
+    uint64_t photons = 0, rays = 0, photon_records = 0, photon_map_bytes = 0;
+    int sections_done = 0;
+    bool interrupted = false;
+};
+
+// (sections done, passes done in the current section) after every pass.
+using ProgressFn = std::function<void(int section, int pass)>;
+
+PipelineStats run_pipeline(const RenderContext& ctx, const MemoryPlan& plan, Strategy strategy,
+                           FrameOutputs& outputs, const ProgressFn& progress,
+                           const std::atomic<bool>& cancel);
+
+}  // namespace sl

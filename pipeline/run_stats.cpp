@@ -1,0 +1,60 @@
+#include "pipeline/run_stats.h"
+
+#include <sys/resource.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "core/errors.h"
+
+namespace sl {
+
+uint64_t peak_rss_bytes() {
+    rusage u{};
+    getrusage(RUSAGE_SELF, &u);
+    return static_cast<uint64_t>(u.ru_maxrss) * 1024;  // Linux reports KiB
+}
+
+void write_stats_json(const std::string& path, const RunSummary& s) {
+    const PipelineStats& p = s.pipeline;
+    const SceneDesc& sc = *s.scene;
+    nlohmann::json j;
+    j["frames"] = sc.time.frames;
+    j["sections"] = s.plan.sections;
+    j["sections_done"] = p.sections_done;
+    j["passes"] = sc.render.passes;
+    j["photons_per_pass"] = sc.render.photons_per_pass;
+    j["width"] = sc.camera.width;
+    j["height"] = sc.camera.height;
+    j["strategy"] = s.strategy == Strategy::Single ? "single" : "frame-by-frame";
+    j["threads"] = s.threads;
+    j["wall_seconds"] = s.wall_seconds;
+    j["stage_seconds"] = {
+        {"setup", s.setup_seconds},
+        {"exposure_preview", p.exposure_pass},
+        {"visible_points", p.render.camera},
+        {"photon_passes", p.render.photons},
+        {"time_bucket_scatter", p.render.gather},
+        {"frame_assembly", p.assembly},
+        {"writers", p.writing + s.output_seconds},
+    };
+    j["photons_traced"] = p.photons;
+    j["photon_records"] = p.photon_records;
+    j["rays_traced"] = p.rays;
+    j["peak_rss_bytes"] = peak_rss_bytes();
+    j["buffer_bytes_per_section"] = s.plan.buffer_bytes_per_section;
+    j["fixed_overhead_bytes"] = s.plan.fixed_overhead_bytes;
+    j["photon_map_bytes"] = p.photon_map_bytes;
+    j["sections_overlap"] = s.plan.overlap;
+    j["exposure"] = s.exposure;
+    j["interrupted"] = p.interrupted;
+    std::string tmp = path + ".tmp";
+    {
+        std::ofstream f(tmp);
+        f << j.dump(2) << "\n";
+        if (!f) throw RuntimeFailure("--stats " + path + ": cannot write");
+    }
+    if (std::rename(tmp.c_str(), path.c_str()) != 0) throw RuntimeFailure("--stats " + path + ": cannot write");
+}
+
+}  // namespace sl

@@ -1,0 +1,23 @@
+#pragma once
+// --stats FILE.json: machine-readable numbers about a run (the contract's fields and more).
+#include <string>
+
+#include "pipeline/memory_plan.h"
+#include "pipeline/render_pipeline.h"
+
+namespace sl {
+
+struct RunSummary {
+    const SceneDesc* scene = nullptr;
+    MemoryPlan plan;
+    PipelineStats pipeline;
+    double wall_seconds = 0, setup_seconds = 0, output_seconds = 0;
+    double exposure = 1;
+    Strategy strategy = Strategy::Single;
+    int threads = 0;
+};
+
+uint64_t peak_rss_bytes();
+void write_stats_json(const std::string& path, const RunSummary& s);
+
+}  // namespace sl

@@ -1,0 +1,32 @@
+#pragma once
+// Turns a finished section's time slots into frames (linear radiance, RGB, row 0 at the top).
+// Constant emission: everything that arrived before the frame's end. Pulse of m buckets: the
+// m buckets that end at the frame's end. Steady: every slot (only the full-path section).
+#include <vector>
+
+#include "config/scene_desc.h"
+#include "stages/render/section_buffer.h"
+
+namespace sl {
+
+class FrameAssembler {
+public:
+    FrameAssembler(const SectionBuffer& buffer, EmissionMode mode, int pulse_buckets);
+
+    // Frames must be asked for in increasing order (constant frames keep a running sum).
+    void frame(int global_frame, std::vector<float>& rgb);
+    void steady(std::vector<float>& rgb) const;
+
+private:
+    void add_ambient(std::vector<float>& rgb) const;
+
+    const SectionBuffer& buffer_;
+    EmissionMode mode_;
+    int pulse_buckets_;
+    size_t pixels_;
+    float scale_;                 // 1 / passes
+    std::vector<double> running_;  // constant emission: sum of slots up to the last frame
+    int next_slot_ = 1;
+};
+
+}  // namespace sl

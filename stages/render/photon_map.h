@@ -1,0 +1,85 @@
+#pragma once
+// One pass's photons: traced in fixed batches (each with its own random stream and its own
+// output slice, so no atomics and no dependence on the thread count), then counting-sorted into
+// a hash grid whose cells are as wide as the largest gather radius.
+#include <atomic>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "stages/render/render_context.h"
+#include "stages/render/section_layout.h"
+
+namespace sl {
+
+struct PhotonRecord {
+    float x, y, z;
+    float nx, ny, nz;  // surface normal facing the side the photon arrived from
+    float r, g, b;     // flux of the emitted path (W), before dividing by the photon count
+    uint32_t depth;    // scattering vertices from the light, this one included
+    double t_ns;       // arrival time at this point
+};
+
+struct PhotonTraceCounters {
+    std::atomic<uint64_t> photons{0}, rays{0}, stored{0};
+};
+
+class PhotonMap {
+public:
+    // Traces `count` photon paths of pass `pass` and builds the grid with the given cell size.
+    void build(const RenderContext& ctx, const SectionLayout& layout, int pass, int64_t count,
+               double cell_size, PhotonTraceCounters& counters);
+
+    size_t size() const { return x_.size(); }
+    uint64_t bytes() const;
+
+    // Calls f(const PhotonRecord&, float dist2) for every photon within sqrt(r2) of p.
+    template <class F>
+    void for_each_near(float px, float py, float pz, float r2, F&& f) const;
+
+    static constexpr int kBatch = 4096;  // photon paths per task
+
+private:
+    uint32_t hash_cell(int32_t ix, int32_t iy, int32_t iz) const {
+        uint32_t h = static_cast<uint32_t>(ix) * 73856093u ^ static_cast<uint32_t>(iy) * 19349663u ^
+                     static_cast<uint32_t>(iz) * 83492791u;
+        return h & mask_;
+    }
+    int32_t cell(float v) const { return static_cast<int32_t>(std::floor(v * inv_cell_)); }
+
+    std::vector<std::vector<PhotonRecord>> batches_;  // kept between passes: no reallocation
+    std::vector<uint32_t> cell_start_;                // hash slot -> first photon (size mask+2)
+    std::vector<float> x_, y_, z_;                    // sorted positions (the hot data)
+    std::vector<PhotonRecord> sorted_;                // sorted payload
+    std::vector<uint32_t> slot_of_;                   // scratch: each photon's hash slot
+    std::vector<uint32_t> cursor_;                    // scratch: next free index per slot
+    uint32_t mask_ = 0;
+    float inv_cell_ = 1;
+};
+
+template <class F>
+void PhotonMap::for_each_near(float px, float py, float pz, float r2, F&& f) const {
+    if (x_.empty()) return;
+    float r = std::sqrt(r2);
+    int32_t x0 = cell(px - r), x1 = cell(px + r);
+    int32_t y0 = cell(py - r), y1 = cell(py + r);
+    int32_t z0 = cell(pz - r), z1 = cell(pz + r);
+    uint32_t seen[8];
+    int nseen = 0;
+    for (int32_t ix = x0; ix <= x1; ++ix)
+        for (int32_t iy = y0; iy <= y1; ++iy)
+            for (int32_t iz = z0; iz <= z1; ++iz) {
+                uint32_t h = hash_cell(ix, iy, iz);
+                bool dup = false;  // two cells may share a slot: visit each slot once
+                for (int k = 0; k < nseen; ++k) dup |= seen[k] == h;
+                if (dup || nseen == 8) continue;
+                seen[nseen++] = h;
+                for (uint32_t i = cell_start_[h], e = cell_start_[h + 1]; i < e; ++i) {
+                    float dx = x_[i] - px, dy = y_[i] - py, dz = z_[i] - pz;
+                    float d2 = dx * dx + dy * dy + dz * dz;
+                    if (d2 < r2) f(sorted_[i], d2);
+                }
+            }
+}
+
+}  // namespace sl

@@ -1,0 +1,29 @@
+#include "stages/render/render_context.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace sl {
+
+RenderContext::RenderContext(const SceneDesc& desc)
+    : scene(desc), geometry(desc), lights(desc), camera(desc.camera) {
+    timeline.start_ns = desc.time.start_ns;
+    timeline.end_ns = desc.time.end_ns;
+    timeline.frames = desc.time.frames;
+    if (desc.emission.mode == EmissionMode::Pulse && desc.emission.width_ns > 0)
+        pulse_buckets = std::max(1, static_cast<int>(std::lround(desc.emission.width_ns / timeline.delta())));
+    width = desc.camera.width;
+    height = desc.camera.height;
+    initial_radius = desc.render.radius > 0 ? desc.render.radius : choose_initial_radius(desc, geometry, camera);
+}
+
+float choose_initial_radius(const SceneDesc& desc, const SceneGeometry& geometry, const PinholeCamera& camera) {
+    Vec3 lo = geometry.bounds_min(), hi = geometry.bounds_max();
+    float diag = length(hi - lo);
+    if (!(diag > 0)) return 0.01f;
+    float dist = std::max(length((lo + hi) * 0.5f - camera.position()), 1e-6f * diag);
+    float r = 3.0f * camera.pixel_footprint(dist);
+    return std::clamp(r, 1e-5f * diag, 0.05f * diag);
+}
+
+}  // namespace sl

@@ -1,0 +1,35 @@
+#pragma once
+// Everything a convergence reads and never changes: the scene, its BVH, lights, camera,
+// time axis and the settings that shape the estimate.
+#include <memory>
+
+#include "config/scene_desc.h"
+#include "core/camera.h"
+#include "core/light_set.h"
+#include "core/scene_geometry.h"
+#include "core/timeline.h"
+
+namespace sl {
+
+inline constexpr double kSpeedOfLight = 0.299792458;  // meters per nanosecond
+
+struct RenderContext {
+    explicit RenderContext(const SceneDesc& desc);
+
+    SceneDesc scene;
+    SceneGeometry geometry;
+    LightSet lights;
+    PinholeCamera camera;
+    Timeline timeline;
+    int pulse_buckets = 1;       // pulse width in buckets (1 for constant emission)
+    float initial_radius = 0;    // meters
+    int width = 0, height = 0;
+    size_t pixels() const { return static_cast<size_t>(width) * height; }
+    bool has_ambient() const { return !is_black(scene.render.ambient); }
+};
+
+// The initial gather radius: the scene's own, or about three pixel footprints at the middle of
+// the scene, capped at 5% of the scene's size.
+float choose_initial_radius(const SceneDesc& desc, const SceneGeometry& geometry, const PinholeCamera& camera);
+
+}  // namespace sl

@@ -1,0 +1,34 @@
+#pragma once
+// The camera pass of stochastic progressive photon mapping: one jittered camera path per
+// pixel per pass, followed through mirrors and glass to its first diffuse surface (the visible
+// point). Direct light and seen emitters are evaluated there, at once, with their own arrival
+// times; photons are gathered at the visible points later in the pass.
+#include <atomic>
+#include <cstdint>
+#include <vector>
+
+#include "stages/render/render_context.h"
+#include "stages/render/section_buffer.h"
+
+namespace sl {
+
+// Structure of arrays, one entry per pixel (valid[p] == 0 where the path found no diffuse point).
+struct VisiblePoints {
+    void resize(size_t pixels);
+    std::vector<float> px, py, pz;     // position
+    std::vector<float> nx, ny, nz;     // unit normal facing the camera path
+    std::vector<float> wr, wg, wb;     // camera throughput x BRDF (albedo / pi)
+    std::vector<double> camera_ns;     // time back to the camera (used with camera_tof)
+    std::vector<uint16_t> depth_left;  // photon vertices this point may still accept
+    std::vector<uint8_t> valid;
+};
+
+struct CameraPassCounters {
+    std::atomic<uint64_t> rays{0};
+};
+
+// Fills `vps` for pass `pass` and adds direct light, seen emitters and ambient to `buffer`.
+void camera_pass(const RenderContext& ctx, int pass, VisiblePoints& vps, SectionBuffer& buffer,
+                 CameraPassCounters& counters);
+
+}  // namespace sl

@@ -1,0 +1,77 @@
+#pragma once
+// Scenes built in code for the renderer's tests, where every number is known.
+#include "config/scene_desc.h"
+
+namespace sl::test {
+
+// A diffuse plane y = 0 of half-size `half` (albedo rho), a point light of power P at height h
+// above the origin, and a camera at height cam_h looking straight down (90 degree field).
+inline SceneDesc plane_under_point_light(float rho, float P, float h, float cam_h, int res, float half = 50) {
+    SceneDesc s;
+    s.source = "<test plane>";
+    s.camera.position = {0, cam_h, 0};
+    s.camera.look_at = {0, 0, 0};
+    s.camera.up = {0, 0, -1};
+    s.camera.vfov_deg = 90;
+    s.camera.width = s.camera.height = res;
+    MaterialDesc m;
+    m.name = "grey";
+    m.albedo = Vec3(rho);
+    s.materials.push_back(m);
+    ShapeDesc q;
+    q.type = ShapeType::Quad;
+    q.corner = {-half, 0, half};
+    q.edge1 = {2 * half, 0, 0};
+    q.edge2 = {0, 0, -2 * half};
+    s.shapes.push_back(q);
+    LightDesc l;
+    l.type = LightType::Point;
+    l.position = {0, h, 0};
+    l.power = Vec3(P);
+    s.lights.push_back(l);
+    s.render.max_depth = 1;
+    s.render.passes = 4;
+    s.render.photons_per_pass = 1000;
+    return s;
+}
+
+// A closed Cornell-like box (2 m cube) with a quad light under its ceiling.
+inline SceneDesc small_box(int res, int passes, int photons, int max_depth = 8) {
+    SceneDesc s;
+    s.source = "<test box>";
+    s.camera.position = {0, 1, 0.99f};
+    s.camera.look_at = {0, 1, 0};
+    s.camera.vfov_deg = 90;
+    s.camera.width = s.camera.height = res;
+    MaterialDesc white, red, green;
+    white.name = "white"; white.albedo = Vec3(0.7f);
+    red.name = "red"; red.albedo = {0.63f, 0.065f, 0.05f};
+    green.name = "green"; green.albedo = {0.14f, 0.45f, 0.091f};
+    s.materials = {white, red, green};
+    auto quad = [&](Vec3 c, Vec3 e1, Vec3 e2, int mat) {
+        ShapeDesc q;
+        q.type = ShapeType::Quad;
+        q.corner = c; q.edge1 = e1; q.edge2 = e2; q.material = mat;
+        s.shapes.push_back(q);
+    };
+    quad({-1, 0, 1}, {2, 0, 0}, {0, 0, -2}, 0);   // floor
+    quad({-1, 2, -1}, {2, 0, 0}, {0, 0, 2}, 0);   // ceiling
+    quad({-1, 0, -1}, {2, 0, 0}, {0, 2, 0}, 0);   // back
+    quad({-1, 0, 1}, {2, 0, 0}, {0, 2, 0}, 0);    // front (closes the box behind the camera)
+    quad({-1, 0, 1}, {0, 0, -2}, {0, 2, 0}, 1);   // left
+    quad({1, 0, -1}, {0, 0, 2}, {0, 2, 0}, 2);    // right
+    LightDesc l;
+    l.type = LightType::Quad;
+    l.corner = {-0.25f, 1.98f, -0.2f};
+    l.edge1 = {0.5f, 0, 0};
+    l.edge2 = {0, 0, 0.4f};
+    l.radiance = {17, 12, 4};
+    s.lights.push_back(l);
+    s.time = {0, 24, 12, 24};
+    s.render.passes = passes;
+    s.render.photons_per_pass = photons;
+    s.render.max_depth = max_depth;
+    return s;
+}
+
+}  // namespace sl::test
