@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# The whole set-up on a fresh Debian 12 machine (as root, or with sudo):
+#   bash scripts/setup.sh demo   installs what is missing, builds (Release), renders demo.mp4
+#   bash scripts/setup.sh test   installs what is missing, builds, runs the whole test suite
+set -euo pipefail
+cd "$(dirname "$0")/.."
+what=${1:-demo}
+
+packages=(
+  build-essential cmake ninja-build pkg-config git
+  libembree-dev libtbb-dev libopenimageio-dev openimageio-tools libopenexr-dev
+  libavformat-dev libavcodec-dev libswscale-dev libavutil-dev ffmpeg
+  nlohmann-json3-dev libtinyobjloader-dev libgtest-dev libbenchmark-dev
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "setup: installing ${missing[*]}" >&2
+  sudo_cmd=(); [[ $(id -u) -eq 0 ]] || sudo_cmd=(sudo)
+  "${sudo_cmd[@]}" apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build build -j"$(nproc)"
+
+case "$what" in
+  demo) ./build/slowlight render -o demo.mp4 && echo "setup: wrote demo.mp4" >&2 ;;
+  test) ctest --test-dir build --output-on-failure -j"$(nproc)" ;;
+  build) ;;
+  *) echo "usage: bash scripts/setup.sh demo|test|build" >&2; exit 2 ;;
+esac
