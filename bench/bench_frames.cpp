@@ -1,0 +1,125 @@
+// Single convergence against the number of frames, and the photon pass against bare Embree.
+//
+//   ./build/bench_frames [--passes N] [--photons N] [--rounds N]   (Cornell box, 256x256)
+//
+// Prints, in one run: render time for F = 1, 8, 48, 192 frames (one convergence each, frame
+// assembly included) with the ratio to F = 1, and photon-pass rays per second against bare
+// Embree rays per second (random rays in the same scene, same threads).
+#include <benchmark/benchmark.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <map>
+#include <string>
+
+#include "config/parse_scene.h"
+#include "core/rng.h"
+#include "core/sampling.h"
+#include "stages/render/frame_assembly.h"
+#include "stages/render/render_context.h"
+#include "stages/render/section_renderer.h"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+int g_passes = 16, g_rounds = 3;
+long long g_photons = 100000;
+std::map<int, double> g_best_seconds;   // F -> fastest whole render
+double g_photon_rays_per_s = 0, g_bare_rays_per_s = 0;
+
+sl::SceneDesc cornell(int frames) {
+    sl::SceneDesc s = sl::parse_scene_file(std::string(SLOWLIGHT_SOURCE_DIR) + "/samples/cornell_box.json");
+    s.camera.width = s.camera.height = 256;
+    s.time.frames = frames;
+    s.render.passes = g_passes;
+    s.render.photons_per_pass = g_photons;
+    return s;
+}
+
+void BM_Render(benchmark::State& state) {
+    const int frames = static_cast<int>(state.range(0));
+    sl::SceneDesc scene = cornell(frames);
+    sl::RenderContext ctx(scene);
+    for (auto _ : state) {
+        auto t0 = Clock::now();
+        sl::SectionCounters counters;
+        sl::SectionLayout layout = sl::make_section(ctx.timeline, 1, 1, 0);
+        sl::SectionRun run = sl::render_section(ctx, layout, scene.render.passes, scene.render.photons_per_pass, counters);
+        sl::FrameAssembler assembler(*run.buffer, sl::EmissionMode::Constant, 1);
+        std::vector<float> rgb;
+        for (int f = 0; f < frames; ++f) assembler.frame(f, rgb);
+        double secs = std::chrono::duration<double>(Clock::now() - t0).count();
+        state.SetIterationTime(secs);
+        auto& best = g_best_seconds[frames];
+        best = best == 0 ? secs : std::min(best, secs);
+        if (frames == 1) {
+            double rate = static_cast<double>(counters.photons.rays.load()) / run.times.photons;
+            g_photon_rays_per_s = std::max(g_photon_rays_per_s, rate);
+        }
+        state.counters["photon_pass_s"] = run.times.photons;
+        state.counters["camera_pass_s"] = run.times.camera;
+        state.counters["scatter_s"] = run.times.gather;
+    }
+}
+
+// Random rays through the same BVH: origins uniform in the scene's box, directions uniform.
+void BM_BareEmbree(benchmark::State& state) {
+    sl::SceneDesc scene = cornell(1);
+    sl::RenderContext ctx(scene);
+    const sl::Vec3 lo = ctx.geometry.bounds_min(), hi = ctx.geometry.bounds_max();
+    const size_t batches = 512, per_batch = 4096;
+    for (auto _ : state) {
+        std::atomic<uint64_t> hits{0};
+        auto t0 = Clock::now();
+        tbb::parallel_for(size_t(0), batches, [&](size_t b) {
+            sl::Rng rng(7, 3, b);
+            uint64_t h = 0;
+            for (size_t i = 0; i < per_batch; ++i) {
+                sl::Vec3 o{lo.x + (hi.x - lo.x) * rng.uniform(), lo.y + (hi.y - lo.y) * rng.uniform(),
+                           lo.z + (hi.z - lo.z) * rng.uniform()};
+                sl::Vec3 d = sl::sample_uniform_sphere(rng.uniform(), rng.uniform());
+                sl::SurfaceHit hit;
+                h += ctx.geometry.intersect(o, d, 0, 1e30f, hit);
+            }
+            hits += h;
+        });
+        double secs = std::chrono::duration<double>(Clock::now() - t0).count();
+        state.SetIterationTime(secs);
+        g_bare_rays_per_s = std::max(g_bare_rays_per_s, batches * per_batch / secs);
+        benchmark::DoNotOptimize(hits.load());
+    }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    for (int i = 1; i + 1 < argc; ++i) {
+        if (!std::strcmp(argv[i], "--passes")) g_passes = std::atoi(argv[i + 1]);
+        if (!std::strcmp(argv[i], "--photons")) g_photons = std::atoll(argv[i + 1]);
+        if (!std::strcmp(argv[i], "--rounds")) g_rounds = std::atoi(argv[i + 1]);
+    }
+    // Interleave the frame counts round by round so that machine noise hits them alike.
+    for (int round = 0; round < g_rounds; ++round) {
+        for (int f : {1, 8, 48, 192})
+            benchmark::RegisterBenchmark(("render/frames:" + std::to_string(f)).c_str(), BM_Render)
+                ->Arg(f)->Iterations(1)->UseManualTime()->Unit(benchmark::kMillisecond);
+        benchmark::RegisterBenchmark("bare_embree/random_rays", BM_BareEmbree)
+            ->Iterations(1)->UseManualTime()->Unit(benchmark::kMillisecond);
+    }
+    int bargc = 1;
+    benchmark::Initialize(&bargc, argv);
+    benchmark::RunSpecifiedBenchmarks();
+    benchmark::Shutdown();
+
+    std::printf("\nCornell box 256x256, %d passes x %lld photons, best of %d rounds\n", g_passes, g_photons, g_rounds);
+    std::printf("%8s %12s %12s\n", "frames", "seconds", "vs F=1");
+    for (auto [f, s] : g_best_seconds) std::printf("%8d %12.3f %12.3f\n", f, s, s / g_best_seconds[1]);
+    std::printf("photon pass rays/s %.3g, bare Embree rays/s %.3g, ratio %.2f\n", g_photon_rays_per_s,
+                g_bare_rays_per_s, g_photon_rays_per_s / g_bare_rays_per_s);
+    return 0;
+}
