@@ -1,6 +1,8 @@
 #pragma once
 // The scene and its settings as plain structs, validated and already in SI units (meters,
 // nanoseconds, per-meter coefficients). Everything downstream reads only these.
+// Filled by config/parse_scene.h; field defaults are the scene file's defaults for omitted keys
+// (defaults are in meters: `units` scales only what the file says).
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -42,6 +44,7 @@ struct ShapeDesc {
     float radius = 0;
     // mesh: absolute path (resolved against the scene file's folder); the transform is
     // applied as scale, then rotation (X, then Y, then Z, degrees), then translation (meters).
+    // `scale` includes meters_per_unit: the OBJ's coordinates are in the scene file's units.
     std::string file;
     Vec3 translate;
     float scale = 1;
@@ -74,13 +77,19 @@ struct TimeDesc {
     double end_ns = 12;
     int frames = 48;
     double fps = 24;
+
+    // Δ, the width of one frame in ns (> 0 after validation).
+    double frame_ns() const { return (end_ns - start_ns) / frames; }
 };
 
 enum class EmissionMode { Constant, Pulse };
 
 struct EmissionDesc {
     EmissionMode mode = EmissionMode::Constant;
-    double width_ns = 0;  // pulse width; 0 means one frame width (end-start)/frames
+    double width_ns = 0;  // pulse width as given; 0 (omitted) means one frame width Δ
+    // The pulse width in frames, m = width_ns / Δ (validated to be whole, within 1e-6
+    // relative), or 1 when width_ns is 0. Use this, not width_ns, to count buckets.
+    int width_frames = 1;
 };
 
 struct RenderDesc {

@@ -2,9 +2,22 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace sl {
+namespace {
+
+constexpr size_t kTile = SectionBuffer::kTile;
+
+// Calls f(first pixel, pixels in tile, tile index) for every tile, tiles in parallel.
+template <class F>
+void for_each_tile(size_t pixels, F&& f) {
+    size_t tiles = (pixels + kTile - 1) / kTile;
+    tbb::parallel_for(size_t(0), tiles, [&](size_t t) { f(t * kTile, std::min(kTile, pixels - t * kTile)); });
+}
+
+}  // namespace
 
 FrameAssembler::FrameAssembler(const SectionBuffer& buffer, EmissionMode mode, int pulse_buckets)
     : buffer_(buffer), mode_(mode), pulse_buckets_(pulse_buckets),
@@ -12,8 +25,10 @@ FrameAssembler::FrameAssembler(const SectionBuffer& buffer, EmissionMode mode, i
       scale_(buffer.passes_done > 0 ? 1.0f / static_cast<float>(buffer.passes_done) : 0.0f) {
     if (mode_ == EmissionMode::Constant) {
         running_.assign(pixels_ * 3, 0.0);
-        for (size_t p = 0; p < pixels_; ++p)
-            for (int c = 0; c < 3; ++c) running_[p * 3 + c] = buffer_.slot(p, 0)[c];
+        for_each_tile(pixels_, [&](size_t p0, size_t n) {
+            const float* src = buffer_.slot(p0, 0);
+            for (size_t i = 0; i < n * 3; ++i) running_[p0 * 3 + i] = src[i];
+        });
     }
 }
 
@@ -27,24 +42,28 @@ void FrameAssembler::frame(int global_frame, std::vector<float>& rgb) {
     if (global_frame < l.first_frame || global_frame >= l.end_frame)
         throw std::logic_error("frame outside its section");
     rgb.resize(pixels_ * 3);
-    int last_slot = l.slot_of_bucket(global_frame);
+    const int last_slot = l.slot_of_bucket(global_frame);
     if (mode_ == EmissionMode::Constant) {
         if (last_slot < next_slot_) throw std::logic_error("constant frames must be assembled in order");
-        int from = next_slot_;
-        tbb::parallel_for(size_t(0), pixels_, [&](size_t p) {
-            for (int s = from; s <= last_slot; ++s)
-                for (int c = 0; c < 3; ++c) running_[p * 3 + c] += buffer_.slot(p, s)[c];
-            for (int c = 0; c < 3; ++c) rgb[p * 3 + c] = static_cast<float>(running_[p * 3 + c]) * scale_;
+        const int from = next_slot_;
+        for_each_tile(pixels_, [&](size_t p0, size_t n) {
+            double* run = &running_[p0 * 3];
+            for (int s = from; s <= last_slot; ++s) {
+                const float* src = buffer_.slot(p0, s);  // the tile's pixels for slot s, in a row
+                for (size_t i = 0; i < n * 3; ++i) run[i] += src[i];
+            }
+            for (size_t i = 0; i < n * 3; ++i) rgb[p0 * 3 + i] = static_cast<float>(run[i]) * scale_;
         });
         next_slot_ = last_slot + 1;
     } else {
-        int first_slot = last_slot - pulse_buckets_ + 1;
-        tbb::parallel_for(size_t(0), pixels_, [&](size_t p) {
-            for (int c = 0; c < 3; ++c) {
-                double sum = 0;
-                for (int s = first_slot; s <= last_slot; ++s) sum += buffer_.slot(p, s)[c];
-                rgb[p * 3 + c] = static_cast<float>(sum) * scale_;
+        const int first_slot = std::max(1, last_slot - pulse_buckets_ + 1);
+        for_each_tile(pixels_, [&](size_t p0, size_t n) {
+            double sum[kTile * 3] = {};
+            for (int s = first_slot; s <= last_slot; ++s) {
+                const float* src = buffer_.slot(p0, s);
+                for (size_t i = 0; i < n * 3; ++i) sum[i] += src[i];
             }
+            for (size_t i = 0; i < n * 3; ++i) rgb[p0 * 3 + i] = static_cast<float>(sum[i]) * scale_;
         });
     }
     add_ambient(rgb);
@@ -52,12 +71,13 @@ void FrameAssembler::frame(int global_frame, std::vector<float>& rgb) {
 
 void FrameAssembler::steady(std::vector<float>& rgb) const {
     rgb.assign(pixels_ * 3, 0.0f);
-    tbb::parallel_for(size_t(0), pixels_, [&](size_t p) {
-        for (int c = 0; c < 3; ++c) {
-            double sum = 0;
-            for (int s = 0; s < buffer_.slots; ++s) sum += buffer_.slot(p, s)[c];
-            rgb[p * 3 + c] = static_cast<float>(sum) * scale_;
+    for_each_tile(pixels_, [&](size_t p0, size_t n) {
+        double sum[kTile * 3] = {};
+        for (int s = 0; s < buffer_.slots; ++s) {
+            const float* src = buffer_.slot(p0, s);
+            for (size_t i = 0; i < n * 3; ++i) sum[i] += src[i];
         }
+        for (size_t i = 0; i < n * 3; ++i) rgb[p0 * 3 + i] = static_cast<float>(sum[i]) * scale_;
     });
     add_ambient(rgb);
 }

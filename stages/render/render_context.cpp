@@ -10,8 +10,7 @@ RenderContext::RenderContext(const SceneDesc& desc)
     timeline.start_ns = desc.time.start_ns;
     timeline.end_ns = desc.time.end_ns;
     timeline.frames = desc.time.frames;
-    if (desc.emission.mode == EmissionMode::Pulse && desc.emission.width_ns > 0)
-        pulse_buckets = std::max(1, static_cast<int>(std::lround(desc.emission.width_ns / timeline.delta())));
+    if (desc.emission.mode == EmissionMode::Pulse) pulse_buckets = std::max(1, desc.emission.width_frames);
     width = desc.camera.width;
     height = desc.camera.height;
     initial_radius = desc.render.radius > 0 ? desc.render.radius : choose_initial_radius(desc, geometry, camera);

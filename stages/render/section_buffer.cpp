@@ -7,15 +7,15 @@ SectionBuffer::SectionBuffer(size_t pixels, const SectionLayout& l, float initia
     double r2 = static_cast<double>(initial_radius) * initial_radius;
     radius2.assign(pixels, r2);
     photon_count.assign(pixels, 0.0);
-    accum.assign(pixels * static_cast<size_t>(slots) * 3, 0.0f);
+    accum.assign(padded(pixels) * static_cast<size_t>(slots) * 3, 0.0f);
     if (with_ambient) ambient.assign(pixels * 3, 0.0f);
     max_radius = initial_radius;
 }
 
 uint64_t SectionBuffer::bytes_needed(size_t pixels, int slots, bool with_ambient) {
-    uint64_t per_pixel = 2 * sizeof(double) + static_cast<uint64_t>(slots) * 3 * sizeof(float);
+    uint64_t per_pixel = 2 * sizeof(double);
     if (with_ambient) per_pixel += 3 * sizeof(float);
-    return per_pixel * pixels;
+    return per_pixel * pixels + static_cast<uint64_t>(padded(pixels)) * slots * 3 * sizeof(float);
 }
 
 }  // namespace sl

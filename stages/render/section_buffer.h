@@ -16,14 +16,22 @@ struct SectionBuffer {
     // Bytes this buffer will hold, computed before anything is allocated.
     static uint64_t bytes_needed(size_t pixels, int slots, bool ambient);
 
-    float* slot(size_t pixel, int s) { return &accum[(pixel * slots + s) * 3]; }
-    const float* slot(size_t pixel, int s) const { return &accum[(pixel * slots + s) * 3]; }
+    // Pixels are kept in tiles of kTile: a tile stores slot 0 of its pixels, then slot 1, ...
+    // A frame then reads kTile pixels' values in one run, and the gather, which walks pixels
+    // in order, finds a tile's slots together in cache.
+    static constexpr size_t kTile = 16;
+    size_t offset(size_t pixel, int s) const {
+        return ((pixel / kTile * slots + static_cast<size_t>(s)) * kTile + pixel % kTile) * 3;
+    }
+    float* slot(size_t pixel, int s) { return &accum[offset(pixel, s)]; }
+    const float* slot(size_t pixel, int s) const { return &accum[offset(pixel, s)]; }
+    static size_t padded(size_t pixels) { return (pixels + kTile - 1) / kTile * kTile; }
 
     SectionLayout layout;
     int slots;
     std::vector<double> radius2;        // per pixel, m^2
     std::vector<double> photon_count;   // per pixel: N of progressive photon mapping
-    std::vector<float> accum;           // pixel-major: [pixel][slot][rgb], sum over passes
+    std::vector<float> accum;           // [tile][slot][pixel in tile][rgb], sum over passes
     std::vector<float> ambient;         // [pixel][rgb] sum over passes; empty without ambient
     double max_radius = 0;              // the largest radius, for the photon grid's cell size
     int passes_done = 0;

@@ -55,6 +55,7 @@ TEST(EmissionModes, WiderPulseIsTheSumOfNarrowOnes) {
     RenderContext narrow_ctx(s);
     s.emission.mode = EmissionMode::Pulse;
     s.emission.width_ns = 3 * 2.0;  // three frames wide
+    s.emission.width_frames = 3;
     RenderContext wide_ctx(s);
     ASSERT_EQ(wide_ctx.pulse_buckets, 3);
     SectionCounters counters;

@@ -1,0 +1,25 @@
+#pragma once
+// The command line of ../shared/contract.md:
+//   slowlight render [SCENE.json] [options] | slowlight info SCENE.json [options]
+//   slowlight --version | --help
+// Options may come before or after the scene, as `--opt value` or `--opt=value`; a later
+// option overrides an earlier one. Errors throw InputError "command line: <what>".
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "config/run_options.h"
+
+namespace sl {
+
+RunOptions parse_command_line(int argc, const char* const* argv);
+
+// The --help text: every command and option, one line each.
+std::string usage_text();
+
+// A byte count such as "512M", "2G", "1.5GiB", "1024": K, M, G, T are binary multiples
+// (1024), an optional trailing B or iB, any case. Nothing when malformed, zero or too large.
+std::optional<uint64_t> parse_byte_size(std::string_view text);
+
+}  // namespace sl

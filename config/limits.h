@@ -1,0 +1,21 @@
+#pragma once
+// Accepted ranges shared by the scene file and the command line, so both report the same bounds.
+#include <cstdint>
+
+namespace sl::limits {
+
+inline constexpr int kMaxImageSide = 16384;  // camera width and height
+inline constexpr int kMaxFrames = 100000;
+inline constexpr int kMaxPasses = 10'000'000;
+inline constexpr int64_t kMaxPhotonsPerPass = 1'000'000'000;
+inline constexpr int kMaxDepth = 1000;
+inline constexpr int kMaxPulseFrames = 1'000'000;  // pulse width / frame width
+inline constexpr int kMaxSections = kMaxFrames;    // at most one section per frame
+inline constexpr int kMaxThreads = 4096;
+inline constexpr double kMaxFps = 1000;
+// Every length, in meters after units: keeps squared lengths and cross products finite in float.
+inline constexpr double kMaxLength = 1e9;
+// Relative tolerance when checking that a pulse width is a whole number of frames.
+inline constexpr double kPulseTolerance = 1e-6;
+
+}  // namespace sl::limits

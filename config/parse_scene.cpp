@@ -1,0 +1,461 @@
+#include "config/parse_scene.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <optional>
+
+#include "config/default_scene.h"
+#include "config/json_reader.h"
+#include "config/limits.h"
+#include "config/text_util.h"
+#include "core/errors.h"
+
+namespace sl {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr size_t kMaxSceneFileBytes = size_t(64) << 20;  // a scene file is small; meshes are apart
+
+// Checks the pulse width against the frame width Δ and sets width_frames.
+// Returns what is wrong, or nothing when the width is fine.
+std::optional<std::string> check_pulse_width(const TimeDesc& time, EmissionDesc& e) {
+    e.width_frames = 1;
+    if (e.mode != EmissionMode::Pulse || e.width_ns == 0) return std::nullopt;
+    const double delta = time.frame_ns();
+    const double m = e.width_ns / delta;
+    const double whole = std::round(m);
+    if (!(whole >= 1) || std::abs(m - whole) > limits::kPulseTolerance * m)
+        return "pulse width " + format_number(e.width_ns) +
+               " ns is not a whole multiple of the frame width (end_ns - start_ns)/frames = " +
+               format_number(delta) + " ns";
+    if (whole > limits::kMaxPulseFrames)
+        return "pulse width " + format_number(e.width_ns) + " ns is more than " +
+               std::to_string(limits::kMaxPulseFrames) + " frame widths";
+    e.width_frames = static_cast<int>(whole);
+    return std::nullopt;
+}
+
+// Turns checked JSON into a SceneDesc, converting lengths to meters on the way.
+class SceneParser {
+public:
+    SceneParser(const std::string& source, const std::string& base_dir)
+        : source_(source), base_dir_(base_dir) {}
+
+    SceneDesc parse(const Json& root) {
+        JsonObject top(root, "", source_);
+        top.expect_keys({"units", "camera", "materials", "shapes", "lights", "medium", "time",
+                         "emission", "render"});
+        scene_.source = source_;
+        // Units first: every length below depends on them. Time before emission: the pulse
+        // width is checked against the frame width.
+        if (top.has("units")) parse_units(top.object("units"));
+        parse_camera(top.object("camera"));
+        if (top.has("materials")) parse_materials(top.object("materials"));
+        if (top.has("shapes"))
+            for_each_element(top, "shapes",
+                             [&](const JsonObject& s) { scene_.shapes.push_back(shape(s)); });
+        for_each_element(top, "lights",
+                         [&](const JsonObject& l) { scene_.lights.push_back(light(l)); });
+        check_lights(top);
+        if (top.has("medium")) parse_medium(top.object("medium"));
+        if (top.has("time")) parse_time(top.object("time"));
+        if (top.has("emission")) parse_emission(top.object("emission"));
+        if (top.has("render")) parse_render(top.object("render"));
+        return std::move(scene_);
+    }
+
+private:
+    template <class F>
+    void for_each_element(const JsonObject& parent, std::string_view key, F&& f) const {
+        const Json& array = parent.at(key);
+        if (!array.is_array())
+            parent.fail(key, "must be an array [...], got " + describe_json(array));
+        for (size_t i = 0; i < array.size(); ++i)
+            f(JsonObject(array[i], element_path(parent.path_of(key), i), source_));
+    }
+
+    // --- values -----------------------------------------------------------------------------
+
+    // A number stored as float, re-checked after rounding (0.99999999999 rounds to 1).
+    static float number_f(const JsonObject& o, std::string_view key, Range r, float dflt) {
+        if (!o.has(key)) return dflt;
+        double v = o.number(key, r);
+        float f = static_cast<float>(v);
+        if (!r.contains(f))
+            o.fail(key,
+                   "must be " + r.describe() + " in single precision, got " + format_number(v));
+        return f;
+    }
+
+    // A triple stored as float; large values must stay finite.
+    static Vec3 to_vec3(const JsonObject& o, std::string_view key, const Triple& t) {
+        Vec3 v{static_cast<float>(t[0]), static_cast<float>(t[1]), static_cast<float>(t[2])};
+        if (!is_finite(v)) o.fail(key, "is too large for single precision");
+        return v;
+    }
+
+    // A length in the file's units as meters, within the global bound.
+    float meters(const JsonObject& o, std::string_view key, double v) const {
+        double m = v * scale_;
+        if (!(std::abs(m) <= limits::kMaxLength))
+            o.fail(key, "is " + format_number(m) + " m after units; lengths must be within +-" +
+                            format_number(limits::kMaxLength) + " m");
+        return static_cast<float>(m);
+    }
+
+    // A scalar length: the range applies to the value as written, and a positive length
+    // must not round to zero meters.
+    float scalar_length(const JsonObject& o, std::string_view key, Range r) const {
+        double v = o.number(key, r);
+        float m = meters(o, key, v);
+        if (v > 0 && m == 0) o.fail(key, "is too small: rounds to 0 m");
+        return m;
+    }
+
+    Vec3 point(const JsonObject& o, std::string_view key) const {
+        Triple t = o.triple(key, Range::any());
+        return {meters(o, key, t[0]), meters(o, key, t[1]), meters(o, key, t[2])};
+    }
+
+    // A unit direction (normalized in double, so that huge components do not overflow).
+    static Vec3 direction(const JsonObject& o, std::string_view key) {
+        Triple t = o.triple(key, Range::any());
+        double len = std::hypot(t[0], t[1], t[2]);
+        if (!(len > 0) || !std::isfinite(len))
+            o.fail(key, "must be a non-zero direction, got " + describe_json(o.at(key)));
+        return {static_cast<float>(t[0] / len), static_cast<float>(t[1] / len),
+                static_cast<float>(t[2] / len)};
+    }
+
+    // Power, radiance, ambient: non-negative RGB.
+    static Vec3 color(const JsonObject& o, std::string_view key) {
+        return to_vec3(o, key, o.triple(key, Range::non_negative()));
+    }
+
+    // A quad spans a parallelogram; its edges must be non-zero and not parallel.
+    static void check_quad(const JsonObject& o, Vec3 e1, Vec3 e2) {
+        if (!(length(cross(e1, e2)) > 1e-6f * length(e1) * length(e2)))
+            o.fail("edge2", "degenerate quad of zero area: edge1 and edge2 are zero or parallel");
+    }
+
+    static void check_box(const JsonObject& o, Vec3 lo, Vec3 hi) {
+        for (int a = 0; a < 3; ++a)
+            if (!(lo[a] < hi[a]))
+                o.fail("max", "must be greater than min on every axis, got min " +
+                                  describe_json(o.at("min")) + " and max " +
+                                  describe_json(o.at("max")));
+    }
+
+    // --- sections ---------------------------------------------------------------------------
+
+    void parse_units(const JsonObject& u) {
+        u.expect_keys({"meters_per_unit"});
+        scale_ = u.number("meters_per_unit", Range::positive(), 1.0);
+        scene_.meters_per_unit = scale_;
+    }
+
+    void parse_camera(const JsonObject& c) {
+        c.expect_keys({"position", "look_at", "up", "vfov_deg", "width", "height"});
+        CameraDesc& cam = scene_.camera;
+        cam.position = point(c, "position");
+        cam.look_at = point(c, "look_at");
+        if (c.has("up")) cam.up = direction(c, "up");
+        cam.vfov_deg = number_f(c, "vfov_deg", Range::open(0, 180), cam.vfov_deg);
+        cam.width = static_cast<int>(c.integer("width", 1, limits::kMaxImageSide, cam.width));
+        cam.height = static_cast<int>(c.integer("height", 1, limits::kMaxImageSide, cam.height));
+        Vec3 forward = cam.look_at - cam.position;
+        if (!(length(forward) > 0)) c.fail("look_at", "must differ from camera.position");
+        if (!(length(cross(normalize(forward), cam.up)) > 1e-5f))
+            c.fail("up", "must not be parallel to the view direction look_at - position");
+    }
+
+    void parse_materials(const JsonObject& ms) {
+        for (const auto& item : ms.json().items()) {
+            if (item.key().empty()) ms.fail_here("a material name must not be empty");
+            JsonObject m(item.value(), ms.path_of(item.key()), source_);
+            MaterialDesc d;
+            d.name = item.key();
+            d.type =
+                static_cast<MaterialType>(m.choice("type", {"diffuse", "mirror", "dielectric"}));
+            const Range unit = Range::closed(0, 1);
+            switch (d.type) {
+                case MaterialType::Diffuse:
+                    m.expect_keys({"type", "albedo"});
+                    if (m.has("albedo")) d.albedo = to_vec3(m, "albedo", m.triple("albedo", unit));
+                    break;
+                case MaterialType::Mirror:
+                    m.expect_keys({"type", "reflectance"});
+                    if (m.has("reflectance"))
+                        d.reflectance = to_vec3(m, "reflectance", m.triple("reflectance", unit));
+                    break;
+                case MaterialType::Dielectric:
+                    m.expect_keys({"type", "ior"});
+                    d.ior = number_f(m, "ior", Range::positive(), d.ior);
+                    break;
+            }
+            material_index_[d.name] = static_cast<int>(scene_.materials.size());
+            scene_.materials.push_back(d);
+        }
+    }
+
+    int material_ref(const JsonObject& s) const {
+        std::string name = s.string("material");
+        auto it = material_index_.find(name);
+        if (it != material_index_.end()) return it->second;
+        std::string defined;
+        for (const MaterialDesc& m : scene_.materials)
+            defined += (defined.empty() ? "" : ", ") + m.name;
+        s.fail("material",
+               "no material named \"" + name + "\" (" +
+                   (defined.empty() ? "no materials are defined" : "defined: " + defined) + ")");
+    }
+
+    std::string mesh_path(const JsonObject& s) const {
+        std::string file = s.string("file");
+        if (file.empty() || file.find('\0') != std::string::npos)
+            s.fail("file", "must be a file path, got " + describe_json(s.at("file")));
+        fs::path p(file);
+        if (p.is_relative()) p = base_dir_ / p;
+        std::error_code ec;
+        p = fs::absolute(p, ec).lexically_normal();
+        fs::file_status st = fs::status(p, ec);
+        if (!fs::exists(st)) s.fail("file", "mesh file not found: " + p.string());
+        if (fs::is_directory(st)) s.fail("file", "is a directory, not a mesh file: " + p.string());
+        return p.string();
+    }
+
+    ShapeDesc shape(const JsonObject& s) const {
+        ShapeDesc d;
+        d.type = static_cast<ShapeType>(s.choice("type", {"quad", "box", "sphere", "mesh"}));
+        switch (d.type) {
+            case ShapeType::Quad:
+                s.expect_keys({"type", "corner", "edge1", "edge2", "material"});
+                d.corner = point(s, "corner");
+                d.edge1 = point(s, "edge1");
+                d.edge2 = point(s, "edge2");
+                check_quad(s, d.edge1, d.edge2);
+                break;
+            case ShapeType::Box:
+                s.expect_keys({"type", "min", "max", "material"});
+                d.min = point(s, "min");
+                d.max = point(s, "max");
+                check_box(s, d.min, d.max);
+                break;
+            case ShapeType::Sphere:
+                s.expect_keys({"type", "center", "radius", "material"});
+                d.center = point(s, "center");
+                d.radius = scalar_length(s, "radius", Range::positive());
+                break;
+            case ShapeType::Mesh:
+                s.expect_keys({"type", "file", "translate", "scale", "rotate_deg", "material"});
+                d.file = mesh_path(s);
+                if (s.has("translate")) d.translate = point(s, "translate");
+                // The OBJ's coordinates are in the file's units too: the scale carries them.
+                d.scale = s.has("scale") ? scalar_length(s, "scale", Range::positive())
+                                         : meters(s, "scale", 1.0);
+                if (s.has("rotate_deg"))
+                    d.rotate_deg = to_vec3(s, "rotate_deg", s.triple("rotate_deg", Range::any()));
+                break;
+        }
+        d.material = material_ref(s);
+        return d;
+    }
+
+    LightDesc light(const JsonObject& l) const {
+        LightDesc d;
+        d.type = static_cast<LightType>(l.choice("type", {"point", "quad", "spot", "laser"}));
+        switch (d.type) {
+            case LightType::Point:
+                l.expect_keys({"type", "position", "power"});
+                d.position = point(l, "position");
+                d.power = color(l, "power");
+                break;
+            case LightType::Quad:
+                l.expect_keys({"type", "corner", "edge1", "edge2", "radiance"});
+                d.corner = point(l, "corner");
+                d.edge1 = point(l, "edge1");
+                d.edge2 = point(l, "edge2");
+                check_quad(l, d.edge1, d.edge2);
+                d.radiance = color(l, "radiance");
+                break;
+            case LightType::Spot:
+                l.expect_keys({"type", "position", "direction", "cone_deg", "power"});
+                d.position = point(l, "position");
+                d.direction = direction(l, "direction");
+                d.cone_deg = number_f(l, "cone_deg", Range{0, 180, true, false}, d.cone_deg);
+                d.power = color(l, "power");
+                break;
+            case LightType::Laser:
+                l.expect_keys({"type", "position", "direction", "radius", "power"});
+                d.position = point(l, "position");
+                d.direction = direction(l, "direction");
+                if (l.has("radius")) d.radius = scalar_length(l, "radius", Range::positive());
+                d.power = color(l, "power");
+                break;
+        }
+        return d;
+    }
+
+    // A scene needs light: at least one light, and not all of them dark.
+    void check_lights(const JsonObject& top) const {
+        if (scene_.lights.empty()) top.fail("lights", "must contain at least one light");
+        for (const LightDesc& l : scene_.lights)
+            if (!is_black(l.type == LightType::Quad ? l.radiance : l.power)) return;
+        top.fail("lights", "every light has zero power or radiance; at least one must emit");
+    }
+
+    // Medium coefficients are per unit length: per meter, they divide by the scale.
+    Vec3 per_meter(const JsonObject& m, std::string_view key) const {
+        Triple t = m.number_or_triple(key, Range::non_negative(), {0, 0, 0});
+        for (double& c : t) c /= scale_;
+        return to_vec3(m, key, t);
+    }
+
+    void parse_medium(const JsonObject& m) {
+        m.expect_keys({"sigma_a", "sigma_s", "g", "bounds"});
+        MediumDesc& md = scene_.medium;
+        md.present = true;
+        md.sigma_a = per_meter(m, "sigma_a");
+        md.sigma_s = per_meter(m, "sigma_s");
+        md.g = number_f(m, "g", Range::open(-1, 1), md.g);
+        if (m.has("bounds")) {
+            JsonObject b = m.object("bounds");
+            b.expect_keys({"min", "max"});
+            md.has_bounds = true;
+            md.bounds_min = point(b, "min");
+            md.bounds_max = point(b, "max");
+            check_box(b, md.bounds_min, md.bounds_max);
+        }
+    }
+
+    void parse_time(const JsonObject& t) {
+        t.expect_keys({"start_ns", "end_ns", "frames", "fps"});
+        TimeDesc& td = scene_.time;
+        td.start_ns = t.number("start_ns", Range::any(), td.start_ns);
+        td.end_ns = t.number("end_ns", Range::any(), td.end_ns);
+        td.frames = static_cast<int>(t.integer("frames", 1, limits::kMaxFrames, td.frames));
+        td.fps = t.number("fps", Range{0, limits::kMaxFps, true, false}, td.fps);
+        if (!(td.end_ns > td.start_ns))
+            t.fail("end_ns", "must be greater than start_ns (" + format_number(td.start_ns) +
+                                 "), got " + format_number(td.end_ns));
+        if (!(std::isfinite(td.frame_ns()) && td.frame_ns() > 0))
+            t.fail("end_ns", "end_ns - start_ns is out of range");
+    }
+
+    void parse_emission(const JsonObject& e) {
+        e.expect_keys({"mode", "width_ns"});
+        EmissionDesc& ed = scene_.emission;
+        ed.mode = static_cast<EmissionMode>(e.choice("mode", {"constant", "pulse"}, 0));
+        if (e.has("width_ns")) {
+            if (ed.mode != EmissionMode::Pulse)
+                e.fail("width_ns", "applies only to \"mode\": \"pulse\"");
+            ed.width_ns = e.number("width_ns", Range::positive());
+        }
+        if (auto problem = check_pulse_width(scene_.time, ed)) e.fail("width_ns", *problem);
+    }
+
+    void parse_render(const JsonObject& r) {
+        r.expect_keys({"passes", "photons_per_pass", "max_depth", "radius", "alpha", "camera_tof",
+                       "seed", "ambient"});
+        RenderDesc& rd = scene_.render;
+        rd.passes = static_cast<int>(r.integer("passes", 1, limits::kMaxPasses, rd.passes));
+        rd.photons_per_pass =
+            r.integer("photons_per_pass", 1, limits::kMaxPhotonsPerPass, rd.photons_per_pass);
+        rd.max_depth = static_cast<int>(r.integer("max_depth", 1, limits::kMaxDepth, rd.max_depth));
+        if (r.has("radius")) rd.radius = scalar_length(r, "radius", Range::non_negative());
+        rd.alpha = number_f(r, "alpha", Range::open(0, 1), rd.alpha);
+        rd.camera_tof = r.boolean("camera_tof", rd.camera_tof);
+        rd.seed = r.unsigned_integer("seed", rd.seed);
+        if (r.has("ambient")) rd.ambient = color(r, "ambient");
+    }
+
+    const std::string& source_;
+    fs::path base_dir_;
+    double scale_ = 1;  // meters per file unit
+    SceneDesc scene_;
+    std::map<std::string, int> material_index_;
+};
+
+[[noreturn]] void command_line_error(std::string_view flag, const std::string& what) {
+    throw InputError("command line: " + std::string(flag) + ": " + what);
+}
+
+template <class T>
+T in_range(std::string_view flag, T v, T lo, T hi) {
+    if (v < lo || v > hi)
+        command_line_error(flag, "must be an integer in " + std::to_string(lo) + ".." +
+                                     std::to_string(hi) + ", got " + std::to_string(v));
+    return v;
+}
+
+}  // namespace
+
+SceneDesc parse_scene_text(const std::string& text, const std::string& source_name,
+                           const std::string& base_dir) {
+    Json root = parse_json_text(text, source_name);
+    return SceneParser(source_name, base_dir).parse(root);
+}
+
+SceneDesc parse_scene_file(const std::string& path) {
+    const std::string name = printable(path);
+    std::error_code ec;
+    if (fs::is_directory(path, ec)) throw InputError(name + ": is a directory, not a scene file");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(name + ": cannot open the scene file: " + std::strerror(errno));
+    // Read in chunks with a cap, so that a device or pipe that never ends cannot hang us.
+    std::string text;
+    char buf[1 << 16];
+    while (in.read(buf, sizeof buf) || in.gcount() > 0) {
+        text.append(buf, static_cast<size_t>(in.gcount()));
+        if (text.size() > kMaxSceneFileBytes)
+            throw InputError(name + ": the scene file is larger than 64 MiB");
+    }
+    if (in.bad()) throw InputError(name + ": cannot read the scene file: " + std::strerror(errno));
+    return parse_scene_text(text, path, fs::path(path).parent_path().string());
+}
+
+SceneDesc parse_default_scene() {
+    return parse_scene_text(default_scene_json(), "<default>", "");
+}
+
+EmissionDesc parse_emission_option(const std::string& spec) {
+    EmissionDesc e;
+    if (spec == "constant") return e;
+    e.mode = EmissionMode::Pulse;
+    if (spec == "pulse") return e;
+    const std::string prefix = "pulse:";
+    if (spec.rfind(prefix, 0) != 0)
+        command_line_error("--emission", "must be constant, pulse or pulse:WIDTH_NS, got '" +
+                                             printable(spec) + "'");
+    std::optional<double> w = parse_whole<double>(std::string_view(spec).substr(prefix.size()));
+    if (!w || !std::isfinite(*w) || !(*w > 0))
+        command_line_error("--emission",
+                           "the pulse width must be a finite number of ns > 0, got '" +
+                               printable(spec.substr(prefix.size())) + "'");
+    e.width_ns = *w;
+    return e;
+}
+
+void apply_overrides(SceneDesc& scene, const RenderOverrides& o) {
+    if (o.frames) scene.time.frames = in_range("--frames", *o.frames, 1, limits::kMaxFrames);
+    if (o.passes) scene.render.passes = in_range("--passes", *o.passes, 1, limits::kMaxPasses);
+    if (o.width) scene.camera.width = in_range("--width", *o.width, 1, limits::kMaxImageSide);
+    if (o.height) scene.camera.height = in_range("--height", *o.height, 1, limits::kMaxImageSide);
+    if (o.photons)
+        scene.render.photons_per_pass =
+            in_range<int64_t>("--photons", *o.photons, 1, limits::kMaxPhotonsPerPass);
+    if (o.seed) scene.render.seed = *o.seed;
+    if (o.camera_tof) scene.render.camera_tof = *o.camera_tof;
+    if (o.emission) scene.emission = parse_emission_option(*o.emission);
+    // New frames or a new width: the pulse must still be a whole number of frames.
+    if (auto problem = check_pulse_width(scene.time, scene.emission))
+        command_line_error(o.emission ? "--emission" : "--frames", *problem);
+}
+
+}  // namespace sl
