@@ -32,7 +32,7 @@ void gather_photons(const RenderContext& ctx, const VisiblePoints& vps, const Ph
                     const float k = static_cast<float>(inv_count / (kPi * r2));
                     const float wr = vps.wr[p] * k, wg = vps.wg[p] * k, wb = vps.wb[p] * k;
                     uint32_t found = 0;
-                    photons.for_each_near(px, py, pz, static_cast<float>(r2), [&](const PhotonRecord& ph, float) {
+                    photons.for_each_near(px, py, pz, static_cast<float>(r2), [&](const PhotonRecord& ph) {
                         if (ph.nx * nx + ph.ny * ny + ph.nz * nz < kSameSurface) return;
                         if (ph.depth > depth_left) return;
                         ++found;

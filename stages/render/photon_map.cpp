@@ -3,6 +3,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <bit>
 
 #include "core/rng.h"
 #include "core/scattering.h"
@@ -64,10 +65,10 @@ struct PhotonPath {
 }  // namespace
 
 uint64_t PhotonMap::bytes() const {
-    uint64_t b = (cell_start_.capacity() + cursor_.capacity()) * sizeof(uint32_t) + slot_of_.capacity() * sizeof(uint32_t) +
-                 (x_.capacity() + y_.capacity() + z_.capacity()) * sizeof(float) +
-                 sorted_.capacity() * sizeof(PhotonRecord);
-    for (const auto& v : batches_) b += v.capacity() * sizeof(PhotonRecord);
+    uint64_t b = (staged_.capacity() + sorted_.capacity()) * sizeof(PhotonRecord) +
+                 (staged_slot_.capacity() + cell_start_.capacity() + partition_start_.capacity()) * sizeof(uint32_t);
+    for (const Batch& v : batches_)
+        b += v.records.capacity() * sizeof(PhotonRecord) + (v.hashes.capacity() + v.partitions.capacity()) * 4;
     return b;
 }
 
@@ -75,45 +76,87 @@ void PhotonMap::build(const RenderContext& ctx, const SectionLayout& layout, int
                       double cell_size, PhotonTraceCounters& counters) {
     const size_t nbatches = ctx.lights.has_emission() ? static_cast<size_t>((count + kBatch - 1) / kBatch) : 0;
     batches_.resize(nbatches);
+    inv_cell_ = static_cast<float>(1.0 / std::max(cell_size, 1e-12));
     tbb::parallel_for(size_t(0), nbatches, [&](size_t b) {
-        std::vector<PhotonRecord>& out = batches_[b];
-        out.clear();
+        Batch& batch = batches_[b];
+        batch.records.clear();
         Rng rng(ctx.scene.render.seed, 2, static_cast<uint64_t>(pass), b);
-        PhotonPath path{ctx, layout, out};
+        PhotonPath path{ctx, layout, batch.records};
         int64_t n = std::min<int64_t>(kBatch, count - static_cast<int64_t>(b) * kBatch);
         for (int64_t i = 0; i < n; ++i) path.trace(rng);
+        batch.hashes.resize(batch.records.size());
+        for (size_t i = 0; i < batch.records.size(); ++i) {
+            const PhotonRecord& p = batch.records[i];
+            batch.hashes[i] = hash_cell(cell(p.x), cell(p.y), cell(p.z));
+        }
         counters.photons.fetch_add(static_cast<uint64_t>(n), std::memory_order_relaxed);
         counters.rays.fetch_add(path.rays, std::memory_order_relaxed);
     });
-
-    // Counting sort by hash slot, in batch order: the layout is the same for any thread count.
     size_t total = 0;
-    for (const auto& v : batches_) total += v.size();
+    for (const Batch& v : batches_) total += v.records.size();
     counters.stored.fetch_add(total, std::memory_order_relaxed);
-    uint32_t table = 1024;
+    sort_into_grid(total);
+}
+
+// A stable two-step counting sort by hash slot that runs in parallel and gives the same order
+// for any thread count: records are first grouped by the slot's top bits (each batch writes
+// its own ranges, in batch order), then each group is counting-sorted on its own.
+void PhotonMap::sort_into_grid(size_t total) {
+    uint32_t table = 1u << 10;
     while (table < 2 * total && table < (1u << 30)) table <<= 1;
     mask_ = table - 1;
-    inv_cell_ = static_cast<float>(1.0 / std::max(cell_size, 1e-12));
-    cell_start_.assign(static_cast<size_t>(table) + 1, 0);
-    slot_of_.resize(total);
-    size_t i = 0;
-    for (const auto& v : batches_)
-        for (const PhotonRecord& p : v) {
-            uint32_t h = hash_cell(cell(p.x), cell(p.y), cell(p.z));
-            slot_of_[i++] = h;
-            ++cell_start_[h + 1];
+    const int shift = std::countr_zero(table) - kPartitionBits;
+    const size_t parts = size_t(1) << kPartitionBits;
+
+    tbb::parallel_for(size_t(0), batches_.size(), [&](size_t b) {
+        Batch& batch = batches_[b];
+        batch.partitions.assign(parts, 0);
+        for (uint32_t& h : batch.hashes) {
+            h &= mask_;
+            ++batch.partitions[h >> shift];
         }
-    for (size_t s = 1; s <= table; ++s) cell_start_[s] += cell_start_[s - 1];
-    x_.resize(total); y_.resize(total); z_.resize(total);
+    });
+    partition_start_.assign(parts + 1, 0);
+    uint32_t offset = 0;
+    for (size_t part = 0; part < parts; ++part) {
+        partition_start_[part] = offset;
+        for (Batch& batch : batches_) {
+            uint32_t n = batch.partitions[part];
+            batch.partitions[part] = offset;  // from here on: this batch's write cursor
+            offset += n;
+        }
+    }
+    partition_start_[parts] = offset;
+    staged_.resize(total);
+    staged_slot_.resize(total);
+    tbb::parallel_for(size_t(0), batches_.size(), [&](size_t b) {
+        Batch& batch = batches_[b];
+        for (size_t i = 0; i < batch.records.size(); ++i) {
+            uint32_t dst = batch.partitions[batch.hashes[i] >> shift]++;
+            staged_[dst] = batch.records[i];
+            staged_slot_[dst] = batch.hashes[i];
+        }
+    });
     sorted_.resize(total);
-    cursor_.assign(cell_start_.begin(), cell_start_.end() - 1);
-    i = 0;
-    for (const auto& v : batches_)
-        for (const PhotonRecord& p : v) {
-            uint32_t dst = cursor_[slot_of_[i++]]++;
-            x_[dst] = p.x; y_[dst] = p.y; z_[dst] = p.z;
-            sorted_[dst] = p;
+    cell_start_.resize(static_cast<size_t>(table) + 1);
+    tbb::parallel_for(size_t(0), parts, [&](size_t part) {
+        const uint32_t first_slot = static_cast<uint32_t>(part) << shift, slots = 1u << shift;
+        uint32_t* start = &cell_start_[first_slot];
+        std::fill(start, start + slots, 0u);
+        const uint32_t lo = partition_start_[part], hi = partition_start_[part + 1];
+        for (uint32_t i = lo; i < hi; ++i) ++start[staged_slot_[i] - first_slot];
+        uint32_t run = lo;
+        for (uint32_t s = 0; s < slots; ++s) {
+            uint32_t n = start[s];
+            start[s] = run;
+            run += n;
         }
+        // Fill with start[] as the cursor; afterwards start[s] is slot s's end, so shift it back.
+        for (uint32_t i = lo; i < hi; ++i) sorted_[start[staged_slot_[i] - first_slot]++] = staged_[i];
+        for (uint32_t s = slots - 1; s > 0; --s) start[s] = start[s - 1];
+        start[0] = lo;
+    });
+    cell_start_[table] = static_cast<uint32_t>(total);
 }
 
 }  // namespace sl

@@ -30,36 +30,42 @@ public:
     void build(const RenderContext& ctx, const SectionLayout& layout, int pass, int64_t count,
                double cell_size, PhotonTraceCounters& counters);
 
-    size_t size() const { return x_.size(); }
+    size_t size() const { return sorted_.size(); }
     uint64_t bytes() const;
 
-    // Calls f(const PhotonRecord&, float dist2) for every photon within sqrt(r2) of p.
+    // Calls f(const PhotonRecord&) for every photon within sqrt(r2) of p.
     template <class F>
     void for_each_near(float px, float py, float pz, float r2, F&& f) const;
 
-    static constexpr int kBatch = 4096;  // photon paths per task
+    static constexpr int kBatch = 4096;     // photon paths per task
+    static constexpr int kPartitionBits = 6;  // the sort's first, parallel, radix step
 
 private:
     uint32_t hash_cell(int32_t ix, int32_t iy, int32_t iz) const {
-        uint32_t h = static_cast<uint32_t>(ix) * 73856093u ^ static_cast<uint32_t>(iy) * 19349663u ^
-                     static_cast<uint32_t>(iz) * 83492791u;
-        return h & mask_;
+        return static_cast<uint32_t>(ix) * 73856093u ^ static_cast<uint32_t>(iy) * 19349663u ^
+               static_cast<uint32_t>(iz) * 83492791u;
     }
     int32_t cell(float v) const { return static_cast<int32_t>(std::floor(v * inv_cell_)); }
+    void sort_into_grid(size_t total);
 
-    std::vector<std::vector<PhotonRecord>> batches_;  // kept between passes: no reallocation
-    std::vector<uint32_t> cell_start_;                // hash slot -> first photon (size mask+2)
-    std::vector<float> x_, y_, z_;                    // sorted positions (the hot data)
-    std::vector<PhotonRecord> sorted_;                // sorted payload
-    std::vector<uint32_t> slot_of_;                   // scratch: each photon's hash slot
-    std::vector<uint32_t> cursor_;                    // scratch: next free index per slot
+    struct Batch {
+        std::vector<PhotonRecord> records;
+        std::vector<uint32_t> hashes;      // each record's cell hash (before masking)
+        std::vector<uint32_t> partitions;  // records per partition, then write cursors
+    };
+    std::vector<Batch> batches_;        // kept between passes: no reallocation per photon
+    std::vector<PhotonRecord> staged_;  // records grouped by partition (batch order kept)
+    std::vector<uint32_t> staged_slot_;
+    std::vector<PhotonRecord> sorted_;  // records grouped by hash slot: the grid's cells
+    std::vector<uint32_t> cell_start_;  // hash slot -> first record (size table + 1)
+    std::vector<uint32_t> partition_start_;
     uint32_t mask_ = 0;
     float inv_cell_ = 1;
 };
 
 template <class F>
 void PhotonMap::for_each_near(float px, float py, float pz, float r2, F&& f) const {
-    if (x_.empty()) return;
+    if (sorted_.empty()) return;
     float r = std::sqrt(r2);
     int32_t x0 = cell(px - r), x1 = cell(px + r);
     int32_t y0 = cell(py - r), y1 = cell(py + r);
@@ -69,15 +75,15 @@ void PhotonMap::for_each_near(float px, float py, float pz, float r2, F&& f) con
     for (int32_t ix = x0; ix <= x1; ++ix)
         for (int32_t iy = y0; iy <= y1; ++iy)
             for (int32_t iz = z0; iz <= z1; ++iz) {
-                uint32_t h = hash_cell(ix, iy, iz);
+                uint32_t h = hash_cell(ix, iy, iz) & mask_;
                 bool dup = false;  // two cells may share a slot: visit each slot once
                 for (int k = 0; k < nseen; ++k) dup |= seen[k] == h;
                 if (dup || nseen == 8) continue;
                 seen[nseen++] = h;
                 for (uint32_t i = cell_start_[h], e = cell_start_[h + 1]; i < e; ++i) {
-                    float dx = x_[i] - px, dy = y_[i] - py, dz = z_[i] - pz;
-                    float d2 = dx * dx + dy * dy + dz * dz;
-                    if (d2 < r2) f(sorted_[i], d2);
+                    const PhotonRecord& ph = sorted_[i];
+                    float dx = ph.x - px, dy = ph.y - py, dz = ph.z - pz;
+                    if (dx * dx + dy * dy + dz * dz < r2) f(ph);
                 }
             }
 }
