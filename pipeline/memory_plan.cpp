@@ -11,9 +11,7 @@
 namespace sl {
 
 int pulse_bucket_count(const SceneDesc& scene) {
-    if (scene.emission.mode != EmissionMode::Pulse || scene.emission.width_ns <= 0) return 1;
-    double delta = (scene.time.end_ns - scene.time.start_ns) / scene.time.frames;
-    return std::max(1, static_cast<int>(std::lround(scene.emission.width_ns / delta)));
+    return scene.emission.mode == EmissionMode::Pulse ? std::max(1, scene.emission.width_frames) : 1;
 }
 
 static size_t pixel_count(const SceneDesc& s) {
