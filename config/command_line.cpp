@@ -145,6 +145,12 @@ const Option kOptions[] = {
              bad_value(f, "must be a finite number > 0, got '" + printable(v) + "'");
          r.exposure = *x;
      }},
+    {"--cube", "", "FILE.npy",
+     "also write the time-resolved stack (frames+2, height, width, RGB float32) as NumPy .npy",
+     [](RunOptions& r, std::string_view f, std::string_view v) { r.cube_path = path_value(f, v); }},
+    {"--resume", "", "",
+     "with --exr-dir: keep the sections whose frames a render of the same settings left there",
+     [](RunOptions& r, std::string_view, std::string_view) { r.resume = true; }},
     {"--no-progress", "", "", "do not show progress on stderr",
      [](RunOptions& r, std::string_view, std::string_view) { r.progress = false; }},
 };
@@ -213,9 +219,11 @@ RunOptions parse_command_line(int argc, const char* const* argv) {
                     r.command = RunOptions::Command::Render;
                 else if (arg == "info")
                     r.command = RunOptions::Command::Info;
+                else if (arg == "retime")
+                    r.command = RunOptions::Command::Retime;
                 else
                     fail("unknown command '" + printable(arg) +
-                         "' (expected render or info; see slowlight --help)");
+                         "' (expected render, info or retime; see slowlight --help)");
                 have_command = true;
             } else if (!have_scene) {
                 if (arg.empty()) fail("the scene file name is empty");
@@ -254,6 +262,9 @@ RunOptions parse_command_line(int argc, const char* const* argv) {
     if (!have_command) fail("no command given (expected render or info; see slowlight --help)");
     if (r.command == RunOptions::Command::Info && !have_scene)
         fail("info needs a scene file: slowlight info SCENE.json");
+    if (r.command == RunOptions::Command::Retime && !have_scene)
+        fail("retime needs a cube file: slowlight retime CUBE.npy -o out.mp4 [--emission ...]");
+    if (r.resume && r.exr_dir.empty()) fail("--resume needs --exr-dir, where the finished frames are");
     return r;
 }
 
@@ -265,6 +276,8 @@ std::string usage_text() {
         "  slowlight render [SCENE.json] [options]   render a scene (no scene: the built-in demo)\n"
         "  slowlight info SCENE.json [options]       scene summary and memory needed per section "
         "count\n"
+        "  slowlight retime CUBE.npy [options]       make a constant or pulse video from a --cube\n"
+        "                                            file without rendering again\n"
         "  slowlight --version                       print the version\n"
         "  slowlight --help, -h                      print this help (also: slowlight render "
         "--help)\n"

@@ -18,12 +18,14 @@ struct RenderOverrides {
 };
 
 struct RunOptions {
-    enum class Command { Render, Info, Help, Version };
+    enum class Command { Render, Info, Retime, Help, Version };
     Command command = Command::Render;
-    std::string scene_path;  // empty: built-in default demo scene
+    std::string scene_path;  // empty: built-in default demo scene (retime: the cube file)
     std::string output;      // video path, "-" for YUV4MPEG2 on stdout; empty: no video
     bool output_given = false;
     std::string exr_dir, png_dir, stats_path;
+    std::string cube_path;  // --cube: the time-resolved stack as a NumPy .npy file
+    bool resume = false;    // --resume: keep sections whose frames are already in --exr-dir
     std::optional<int> sections;
     std::optional<uint64_t> max_memory_bytes;
     std::optional<double> exposure;  // linear multiplier; default from the steady image

@@ -18,7 +18,10 @@
 #include "pipeline/memory_plan.h"
 #include "pipeline/progress.h"
 #include "pipeline/render_pipeline.h"
+#include "pipeline/resume.h"
+#include "pipeline/retime.h"
 #include "pipeline/run_stats.h"
+#include "pipeline/settings_hash.h"
 #include "pipeline/scene_info.h"
 
 namespace sl {
@@ -28,6 +31,18 @@ std::atomic<bool> g_cancel{false};
 
 extern "C" void on_signal(int) {
     if (g_cancel.exchange(true)) _exit(130);  // a second signal: stop at once
+}
+
+// Refuse up front what could only end in running out of memory.
+void check_fits_machine(const MemoryPlan& plan) {
+    long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
+    if (pages <= 0 || page <= 0) return;
+    uint64_t ram = static_cast<uint64_t>(pages) * static_cast<uint64_t>(page);
+    uint64_t need = plan.buffers_in_flight() + plan.fixed_overhead_bytes;
+    if (need > ram)
+        throw InputError("the render needs about " + format_bytes(need) + " (" + format_bytes(plan.buffers_in_flight()) +
+                         " of time buckets with " + std::to_string(plan.sections) + " section(s)), more than this machine's " +
+                         format_bytes(ram) + "; use --sections, --max-memory, fewer frames or a smaller image");
 }
 
 SceneDesc load_scene(const RunOptions& o) {
@@ -40,19 +55,33 @@ int render(const RunOptions& o) {
     auto t0 = std::chrono::steady_clock::now();
     SceneDesc scene = load_scene(o);
     MemoryPlan plan = plan_memory(scene, o);
+    check_fits_machine(plan);
+    if (o.resume && !o.cube_path.empty())
+        throw InputError("command line: --cube cannot be combined with --resume (the cube needs every section)");
+    const std::string fingerprint = settings_fingerprint(scene, plan.sections, o.strategy);
 
     OutputSettings out;
     out.video = o.output;
     out.exr_dir = o.exr_dir;
     out.png_dir = o.png_dir;
+    out.cube = o.cube_path;
     out.width = scene.camera.width;
     out.height = scene.camera.height;
+    out.frames = scene.time.frames;
     out.fps = scene.time.fps;
+    out.start_ns = scene.time.start_ns;
+    out.end_ns = scene.time.end_ns;
     out.exposure = o.exposure;
-    out.metadata = {{"slowlight:version", SLOWLIGHT_VERSION}, {"slowlight:scene", scene.source}};
+    out.metadata = {{"slowlight:version", SLOWLIGHT_VERSION}, {"slowlight:scene", scene.source},
+                    {kFingerprintKey, fingerprint}};
     FrameOutputs outputs(out);  // every output is checked before rendering starts
 
     RenderContext ctx(scene);
+    PipelineJob job;
+    job.ctx = &ctx;
+    job.plan = plan;
+    job.strategy = o.strategy;
+    if (o.resume) job.on_disk = sections_on_disk(outputs, plan_sections(ctx, plan, o.strategy), fingerprint);
     std::fprintf(stderr, "slowlight: %dx%d, %d frames, %d passes x %lld photons, %d section%s%s; buckets %s per section, about %s fixed\n",
                  ctx.width, ctx.height, scene.time.frames, scene.render.passes,
                  static_cast<long long>(scene.render.photons_per_pass), plan.sections, plan.sections > 1 ? "s" : "",
@@ -63,8 +92,10 @@ int render(const RunOptions& o) {
     std::signal(SIGINT, on_signal);
     std::signal(SIGTERM, on_signal);
     ProgressBar bar(o.progress, plan.sections, scene.render.passes);
-    PipelineStats stats = run_pipeline(ctx, plan, o.strategy, outputs,
-                                       [&](int s, int p) { bar.update(s, p); }, g_cancel);
+    PipelineStats stats = run_pipeline(job, outputs, [&](int s, int p) { bar.update(s, p); }, g_cancel);
+    if (stats.sections_resumed > 0)
+        std::fprintf(stderr, "slowlight: resumed %d of %d sections from %s\n", stats.sections_resumed, plan.sections,
+                     o.exr_dir.c_str());
     bar.finish();
     auto tf = std::chrono::steady_clock::now();
     outputs.finish();
@@ -103,11 +134,13 @@ int run_cli(int argc, char** argv) {
             print_scene_info(std::cout, scene);
             return 0;
         }
+        case RunOptions::Command::Retime: break;
         case RunOptions::Command::Render: break;
         }
         std::unique_ptr<tbb::global_control> threads;
         if (o.threads > 0)
             threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, o.threads);
+        if (o.command == RunOptions::Command::Retime) return retime(o);
         return render(o);
     } catch (const InputError& e) {
         std::fprintf(stderr, "error: %s\n", e.what());

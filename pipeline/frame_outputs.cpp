@@ -3,8 +3,12 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
 
 #include "core/errors.h"
+#include "stages/output/atomic_file.h"
 #include "stages/output/exr_io.h"
 #include "stages/output/png_io.h"
 #include "stages/output/tone_map.h"
@@ -33,6 +37,31 @@ double timed(F&& f) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+// The cube's side-car: what its planes mean, so that `retime` and users need nothing else.
+void write_cube_sidecar(const OutputSettings& s) {
+    nlohmann::json j;
+    j["format"] = "slowlight transient cube 1";
+    j["layout"] = "float32 radiance (W sr^-1 m^-2), shape (frames + 2, height, width, 3): plane 0 holds what arrived "
+                  "before start_ns, plane k + 1 what arrived in frame k, the last plane what arrived at or after end_ns; "
+                  "the ambient term is not included";
+    j["start_ns"] = s.start_ns;
+    j["end_ns"] = s.end_ns;
+    j["frames"] = s.frames;
+    j["fps"] = s.fps;
+    j["width"] = s.width;
+    j["height"] = s.height;
+    const std::string path = s.cube + ".json", temp = temp_sibling(path);
+    {
+        std::ofstream f(temp);
+        f << j.dump(2) << "\n";
+        if (!f) {
+            discard_file(temp);
+            throw RuntimeFailure("--cube " + path + ": cannot write");
+        }
+    }
+    commit_file(temp, path);
+}
+
 }  // namespace
 
 FrameOutputs::FrameOutputs(const OutputSettings& s) : settings_(s), exposure_(s.exposure) {
@@ -46,13 +75,24 @@ FrameOutputs::FrameOutputs(const OutputSettings& s) : settings_(s), exposure_(s.
         v.fps = s.fps;
         encoder_ = VideoEncoder::open(v);
     }
+    if (!s.cube.empty()) cube_ = std::make_unique<NpyCubeWriter>(s.cube, s.frames + 2, s.height, s.width);
     rgb8_.resize(static_cast<size_t>(s.width) * s.height * 3);
 }
 
-void FrameOutputs::write_frame(int index, const std::vector<float>& rgb) {
+std::string FrameOutputs::exr_frame_path(int index) const { return numbered(settings_.exr_dir, "exr", index); }
+std::string FrameOutputs::exr_steady_path() const {
+    return (std::filesystem::path(settings_.exr_dir) / "steady.exr").string();
+}
+
+void FrameOutputs::write_frame(int index, const std::vector<float>& rgb, bool on_disk) {
     const int w = settings_.width, h = settings_.height;
-    if (!settings_.exr_dir.empty())
-        seconds_exr += timed([&] { write_exr(numbered(settings_.exr_dir, "exr", index), w, h, rgb.data(), settings_.metadata); });
+    if (!settings_.exr_dir.empty() && !on_disk) {
+        std::map<std::string, std::string> meta = settings_.metadata;
+        double delta = (settings_.end_ns - settings_.start_ns) / std::max(1, settings_.frames);
+        meta["slowlight:frame"] = std::to_string(index);
+        meta["slowlight:frame_end_ns"] = std::to_string(settings_.start_ns + (index + 1) * delta);
+        seconds_exr += timed([&] { write_exr(exr_frame_path(index), w, h, rgb.data(), meta); });
+    }
     if (encoder_ || !settings_.png_dir.empty()) {
         tone_map_srgb8(rgb.data(), w, h, exposure_.value_or(1.0), rgb8_.data());
         if (!settings_.png_dir.empty())
@@ -65,17 +105,23 @@ void FrameOutputs::write_frame(int index, const std::vector<float>& rgb) {
 void FrameOutputs::write_steady(const std::vector<float>& rgb) {
     const int w = settings_.width, h = settings_.height;
     if (!settings_.exr_dir.empty())
-        seconds_exr += timed([&] {
-            write_exr((std::filesystem::path(settings_.exr_dir) / "steady.exr").string(), w, h, rgb.data(), settings_.metadata);
-        });
+        seconds_exr += timed([&] { write_exr(exr_steady_path(), w, h, rgb.data(), settings_.metadata); });
     if (!settings_.png_dir.empty()) {
         tone_map_srgb8(rgb.data(), w, h, exposure_.value_or(1.0), rgb8_.data());
         seconds_png += timed([&] { write_png((std::filesystem::path(settings_.png_dir) / "steady.png").string(), w, h, rgb8_.data()); });
     }
 }
 
+void FrameOutputs::write_cube_plane(const std::vector<float>& rgb) {
+    if (cube_) cube_->append(rgb.data());
+}
+
 void FrameOutputs::finish() {
     if (encoder_) seconds_video += timed([&] { encoder_->finish(); });
+    if (cube_ && cube_->planes_written() == settings_.frames + 2) {
+        cube_->finish();
+        write_cube_sidecar(settings_);
+    }
 }
 
 }  // namespace sl

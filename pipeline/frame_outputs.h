@@ -1,6 +1,6 @@
 #pragma once
-// Where finished frames go: linear EXR files, tone-mapped PNGs and the video encoder. All of
-// them are opened (and checked) before rendering starts.
+// Where finished frames go: linear EXR files, tone-mapped PNGs, the video encoder and the
+// transient cube. All of them are opened (and checked) before rendering starts.
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "stages/output/npy_cube.h"
 #include "stages/output/video_encoder.h"
 
 namespace sl {
@@ -15,8 +16,9 @@ namespace sl {
 struct OutputSettings {
     std::string video;  // "" for none, "-" for stdout
     std::string exr_dir, png_dir;
-    int width = 0, height = 0;
-    double fps = 24;
+    std::string cube;   // "" for none
+    int width = 0, height = 0, frames = 0;
+    double fps = 24, start_ns = 0, end_ns = 0;
     std::optional<double> exposure;              // fixed by the user
     std::map<std::string, std::string> metadata;  // stored in every EXR header
 };
@@ -28,10 +30,16 @@ public:
     bool needs_exposure() const { return !exposure_ && (encoder_ || !settings_.png_dir.empty()); }
     void set_exposure(double e) { exposure_ = e; }
     std::optional<double> exposure() const { return exposure_; }
+    bool wants_cube() const { return cube_ != nullptr; }
 
-    void write_frame(int index, const std::vector<float>& rgb);
+    // `on_disk`: the EXR is already there (a resumed section), so only the rest is written.
+    void write_frame(int index, const std::vector<float>& rgb, bool on_disk = false);
     void write_steady(const std::vector<float>& rgb);
-    void finish();  // closes the video so that it plays
+    void write_cube_plane(const std::vector<float>& rgb);
+    void finish();  // closes the video so that it plays, and the cube
+
+    std::string exr_frame_path(int index) const;
+    std::string exr_steady_path() const;
 
     double seconds_exr = 0, seconds_png = 0, seconds_video = 0;
     int64_t frames_written = 0;
@@ -40,6 +48,7 @@ private:
     OutputSettings settings_;
     std::optional<double> exposure_;
     std::unique_ptr<VideoEncoder> encoder_;
+    std::unique_ptr<NpyCubeWriter> cube_;
     std::vector<uint8_t> rgb8_;
 };
 

@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 
+#include "stages/output/exr_io.h"
 #include "stages/output/tone_map.h"
 #include "stages/render/frame_assembly.h"
 
@@ -19,6 +20,9 @@ double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock:
 
 struct Section {
     SectionLayout layout;
+    bool last = false;
+    bool from_disk = false;  // resumed: its frames are read back from the EXR files
+    bool complete = true;    // false when interrupted: its frames are never written
     SectionRun run;
     std::optional<FrameAssembler> assembler;
 };
@@ -32,14 +36,8 @@ struct FrameImage {
     SectionPtr section;
     int frame = 0;
     std::vector<float> rgb;
+    std::vector<float> before, bucket, after;  // transient-cube planes, when asked for
 };
-
-SectionLayout layout_for(const RenderContext& ctx, const MemoryPlan& plan, Strategy strategy, int index) {
-    SectionLayout l = make_section(ctx.timeline, ctx.pulse_buckets, plan.sections, index);
-    // The baseline renders every frame as a full, independent convergence, as the paper does.
-    if (strategy == Strategy::FrameByFrame) l.full_paths = true;
-    return l;
-}
 
 // A short steady-only convergence, so that the video's exposure is known before the first
 // section's frames are encoded (with one section, the section itself provides it).
@@ -58,16 +56,33 @@ double exposure_from_preview(const RenderContext& ctx, SectionCounters& counters
 
 }  // namespace
 
-PipelineStats run_pipeline(const RenderContext& ctx, const MemoryPlan& plan, Strategy strategy,
-                           FrameOutputs& outputs, const ProgressFn& progress,
+std::vector<SectionLayout> plan_sections(const RenderContext& ctx, const MemoryPlan& plan, Strategy strategy) {
+    std::vector<SectionLayout> out;
+    for (int k = 0; k < plan.sections; ++k) {
+        SectionLayout l = make_section(ctx.timeline, ctx.pulse_buckets, plan.sections, k);
+        // The baseline renders every frame as a full, independent convergence, as the paper does.
+        if (strategy == Strategy::FrameByFrame) l.full_paths = true;
+        out.push_back(l);
+    }
+    return out;
+}
+
+PipelineStats run_pipeline(const PipelineJob& job, FrameOutputs& outputs, const ProgressFn& progress,
                            const std::atomic<bool>& cancel) {
+    const RenderContext& ctx = *job.ctx;
+    const MemoryPlan& plan = job.plan;
     PipelineStats stats;
     SectionCounters counters;
     const int passes = ctx.scene.render.passes;
     const int64_t photons_per_pass = ctx.scene.render.photons_per_pass;
     const EmissionMode mode = ctx.scene.emission.mode;
+    const std::vector<SectionLayout> layouts = plan_sections(ctx, plan, job.strategy);
+    auto resumed = [&](int s) { return s < static_cast<int>(job.on_disk.size()) && job.on_disk[s]; };
 
-    if (plan.sections > 1 && outputs.needs_exposure()) {
+    if (outputs.needs_exposure() && resumed(plan.sections - 1)) {
+        ExrImage steady = read_exr(outputs.exr_steady_path());
+        outputs.set_exposure(exposure_from_steady(steady.rgb.data(), ctx.width, ctx.height));
+    } else if (plan.sections > 1 && outputs.needs_exposure()) {
         auto t0 = Clock::now();
         outputs.set_exposure(exposure_from_preview(ctx, counters));
         stats.exposure_pass = since(t0);
@@ -85,46 +100,72 @@ PipelineStats run_pipeline(const RenderContext& ctx, const MemoryPlan& plan, Str
     flow::limiter_node<int> sections_alive(g, plan.overlap ? 2 : 1);
     flow::function_node<int, SectionPtr> render(g, flow::serial, [&](int index) {
         auto s = std::make_shared<Section>();
-        s->layout = layout_for(ctx, plan, strategy, index);
+        s->layout = layouts[index];
+        s->last = index == plan.sections - 1;
+        if (resumed(index)) {
+            s->from_disk = true;
+            ++stats.sections_resumed;
+            return s;
+        }
+        if (cancel.load()) {  // taken from the queue just before the interrupt: not started
+            s->complete = false;
+            return s;
+        }
         std::fprintf(stderr, "slowlight: section %d/%d, frames %d-%d: %s of time buckets\n", index + 1,
                      plan.sections, s->layout.first_frame, s->layout.end_frame - 1,
                      format_bytes(SectionBuffer::bytes_needed(ctx.pixels(), s->layout.slots(), ctx.has_ambient())).c_str());
         s->run = render_section(ctx, s->layout, passes, photons_per_pass, counters,
                                 [&](int pass) { if (progress) progress(index, pass); },
                                 [&] { return cancel.load(); });
+        s->complete = s->run.buffer->passes_done == passes;
         stats.render.camera += s->run.times.camera;
         stats.render.photons += s->run.times.photons;
         stats.render.gather += s->run.times.gather;
         stats.photon_map_bytes = std::max(stats.photon_map_bytes, s->run.photon_map_bytes);
+        if (!s->complete) s->run.buffer.reset();
         return s;
     });
     using Split = flow::multifunction_node<SectionPtr, std::tuple<FrameJob>>;
     Split split(g, flow::serial, [&](const SectionPtr& s, Split::output_ports_type& out) {
+        if (!s->complete) return;  // interrupted: a half-converged section is not written
         for (int f = s->layout.first_frame; f < s->layout.end_frame; ++f) std::get<0>(out).try_put(FrameJob{s, f});
     });
     flow::queue_node<FrameJob> frame_queue(g);
     flow::limiter_node<FrameJob> frames_alive(g, 2);
-    flow::function_node<FrameJob, FrameImage> assemble(g, flow::serial, [&](const FrameJob& job) {
+    flow::function_node<FrameJob, FrameImage> assemble(g, flow::serial, [&](const FrameJob& job_in) {
         auto t0 = Clock::now();
-        Section& s = *job.section;
-        if (!s.assembler) {
-            s.assembler.emplace(*s.run.buffer, mode, ctx.pulse_buckets);
-            if (s.layout.full_paths && s.layout.index == plan.sections - 1) {
-                std::vector<float> steady;
-                s.assembler->steady(steady);
-                if (outputs.needs_exposure()) outputs.set_exposure(exposure_from_steady(steady.data(), ctx.width, ctx.height));
-                outputs.write_steady(steady);
+        Section& s = *job_in.section;
+        FrameImage img{job_in.section, job_in.frame, {}, {}, {}, {}};
+        if (s.from_disk) {
+            img.rgb = read_exr(outputs.exr_frame_path(job_in.frame)).rgb;
+        } else {
+            if (!s.assembler) {
+                s.assembler.emplace(*s.run.buffer, mode, ctx.pulse_buckets);
+                if (s.last) {
+                    std::vector<float> steady;
+                    s.assembler->steady(steady);
+                    if (outputs.needs_exposure())
+                        outputs.set_exposure(exposure_from_steady(steady.data(), ctx.width, ctx.height));
+                    outputs.write_steady(steady);
+                }
+            }
+            s.assembler->frame(job_in.frame, img.rgb);
+            if (outputs.wants_cube()) {
+                if (job_in.frame == 0) s.assembler->before_plane(img.before);
+                s.assembler->bucket_plane(job_in.frame, img.bucket);
+                if (s.last && job_in.frame + 1 == s.layout.end_frame) s.assembler->after_plane(img.after);
             }
         }
-        FrameImage img{job.section, job.frame, {}};
-        s.assembler->frame(job.frame, img.rgb);
         stats.assembly += since(t0);
         return img;
     });
     using Write = flow::multifunction_node<FrameImage, std::tuple<flow::continue_msg, flow::continue_msg>>;
     Write write(g, flow::serial, [&](const FrameImage& img, Write::output_ports_type& out) {
         auto t0 = Clock::now();
-        outputs.write_frame(img.frame, img.rgb);
+        outputs.write_frame(img.frame, img.rgb, img.section->from_disk);
+        if (!img.before.empty()) outputs.write_cube_plane(img.before);
+        if (!img.bucket.empty()) outputs.write_cube_plane(img.bucket);
+        if (!img.after.empty()) outputs.write_cube_plane(img.after);
         stats.writing += since(t0);
         bool last = img.frame + 1 == img.section->layout.end_frame;
         if (last) {  // free the section's buckets before another section may allocate its own

@@ -7,8 +7,11 @@
 //
 // Frames leave in order. A section's time buckets are freed as soon as its last frame is
 // written; with two sections alive the next section renders while this one is encoded.
+// Interrupted, the section being rendered is dropped and the frames in hand are written.
 #include <atomic>
 #include <functional>
+#include <string>
+#include <vector>
 
 #include "config/run_options.h"
 #include "pipeline/frame_outputs.h"
@@ -22,15 +25,23 @@ struct PipelineStats {
     StageTimes render;
     double exposure_pass = 0, assembly = 0, writing = 0;
     uint64_t photons = 0, rays = 0, photon_records = 0, photon_map_bytes = 0;
-    int sections_done = 0;
+    int sections_done = 0, sections_resumed = 0;
     bool interrupted = false;
 };
 
-// (sections done, passes done in the current section) after every pass.
+// (section, passes done in it) after every pass.
 using ProgressFn = std::function<void(int section, int pass)>;
 
-PipelineStats run_pipeline(const RenderContext& ctx, const MemoryPlan& plan, Strategy strategy,
-                           FrameOutputs& outputs, const ProgressFn& progress,
+struct PipelineJob {
+    const RenderContext* ctx = nullptr;
+    MemoryPlan plan;
+    Strategy strategy = Strategy::Single;
+    std::vector<bool> on_disk;  // per section: already rendered (--resume)
+};
+
+std::vector<SectionLayout> plan_sections(const RenderContext& ctx, const MemoryPlan& plan, Strategy strategy);
+
+PipelineStats run_pipeline(const PipelineJob& job, FrameOutputs& outputs, const ProgressFn& progress,
                            const std::atomic<bool>& cancel);
 
 }  // namespace sl

@@ -82,4 +82,30 @@ void FrameAssembler::steady(std::vector<float>& rgb) const {
     add_ambient(rgb);
 }
 
+void FrameAssembler::sum_slots(int first, int last, std::vector<float>& rgb) const {
+    rgb.assign(pixels_ * 3, 0.0f);
+    for_each_tile(pixels_, [&](size_t p0, size_t n) {
+        double sum[kTile * 3] = {};
+        for (int s = first; s <= last; ++s) {
+            const float* src = buffer_.slot(p0, s);
+            for (size_t i = 0; i < n * 3; ++i) sum[i] += src[i];
+        }
+        for (size_t i = 0; i < n * 3; ++i) rgb[p0 * 3 + i] = static_cast<float>(sum[i]) * scale_;
+    });
+}
+
+void FrameAssembler::bucket_plane(int global_frame, std::vector<float>& rgb) const {
+    int s = buffer_.layout.slot_of_bucket(global_frame);
+    sum_slots(s, s, rgb);
+}
+
+void FrameAssembler::before_plane(std::vector<float>& rgb) const {
+    sum_slots(0, buffer_.layout.slot_of_bucket(buffer_.layout.first_frame) - 1, rgb);
+}
+
+void FrameAssembler::after_plane(std::vector<float>& rgb) const {
+    int s = buffer_.layout.after_slot();
+    sum_slots(s, s, rgb);
+}
+
 }  // namespace sl

@@ -17,8 +17,15 @@ public:
     void frame(int global_frame, std::vector<float>& rgb);
     void steady(std::vector<float>& rgb) const;
 
+    // Planes of the transient cube (no ambient term): one frame's own bucket, everything that
+    // arrived before the section's first frame, and everything at or after its end.
+    void bucket_plane(int global_frame, std::vector<float>& rgb) const;
+    void before_plane(std::vector<float>& rgb) const;
+    void after_plane(std::vector<float>& rgb) const;
+
 private:
     void add_ambient(std::vector<float>& rgb) const;
+    void sum_slots(int first, int last, std::vector<float>& rgb) const;  // slots first..last
 
     const SectionBuffer& buffer_;
     EmissionMode mode_;

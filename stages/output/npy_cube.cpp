@@ -1,0 +1,97 @@
+#include "stages/output/npy_cube.h"
+
+#include <cerrno>
+#include <cstring>
+#include <regex>
+
+#include "core/errors.h"
+#include "stages/output/atomic_file.h"
+
+namespace sl {
+namespace {
+
+std::string npy_header(int planes, int height, int width) {
+    std::string dict = "{'descr': '<f4', 'fortran_order': False, 'shape': (" + std::to_string(planes) + ", " +
+                       std::to_string(height) + ", " + std::to_string(width) + ", 3), }";
+    // Magic (6) + version (2) + length (2) + dict + padding + '\n', a multiple of 64 bytes.
+    size_t total = 10 + dict.size() + 1;
+    dict.append((64 - total % 64) % 64, ' ');
+    dict += '\n';
+    std::string h("\x93NUMPY\x01\x00", 8);
+    h += static_cast<char>(dict.size() & 0xff);
+    h += static_cast<char>(dict.size() >> 8);
+    return h + dict;
+}
+
+}  // namespace
+
+NpyCubeWriter::NpyCubeWriter(const std::string& path, int planes, int height, int width)
+    : path_(path), temp_(temp_sibling(path)), planes_(planes),
+      plane_values_(static_cast<size_t>(height) * width * 3) {
+    file_ = std::fopen(temp_.c_str(), "wb");
+    if (!file_) throw RuntimeFailure("--cube " + path + ": cannot write: " + std::strerror(errno));
+    std::string h = npy_header(planes, height, width);
+    if (std::fwrite(h.data(), 1, h.size(), file_) != h.size()) {
+        std::fclose(file_);
+        file_ = nullptr;
+        discard_file(temp_);
+        throw RuntimeFailure("--cube " + path + ": cannot write");
+    }
+}
+
+NpyCubeWriter::~NpyCubeWriter() {
+    if (file_) {
+        std::fclose(file_);
+        discard_file(temp_);
+    }
+}
+
+void NpyCubeWriter::append(const float* rgb) {
+    if (!file_ || written_ >= planes_) throw RuntimeFailure("--cube " + path_ + ": too many planes");
+    if (std::fwrite(rgb, sizeof(float), plane_values_, file_) != plane_values_)
+        throw RuntimeFailure("--cube " + path_ + ": cannot write: " + std::strerror(errno));
+    ++written_;
+}
+
+void NpyCubeWriter::finish() {
+    if (!file_) return;
+    if (written_ != planes_) throw RuntimeFailure("--cube " + path_ + ": incomplete");
+    bool ok = std::fflush(file_) == 0;
+    ok = (std::fclose(file_) == 0) && ok;
+    file_ = nullptr;
+    if (!ok) {
+        discard_file(temp_);
+        throw RuntimeFailure("--cube " + path_ + ": cannot write: " + std::strerror(errno));
+    }
+    commit_file(temp_, path_);
+}
+
+NpyCube read_npy_cube(const std::string& path) {
+    auto bad = [&](const std::string& why) { return InputError(path + ": " + why); };
+    std::FILE* f = std::fopen(path.c_str(), "rb");
+    if (!f) throw bad(std::string("cannot open: ") + std::strerror(errno));
+    struct Closer { std::FILE* f; ~Closer() { std::fclose(f); } } closer{f};
+    unsigned char pre[10];
+    if (std::fread(pre, 1, 10, f) != 10 || std::memcmp(pre, "\x93NUMPY", 6) != 0 || pre[6] != 1)
+        throw bad("not a NumPy .npy file (version 1)");
+    size_t len = pre[8] | (static_cast<size_t>(pre[9]) << 8);
+    std::string dict(len, '\0');
+    if (std::fread(dict.data(), 1, len, f) != len) throw bad("truncated header");
+    std::smatch m;
+    static const std::regex shape_re(R"(\(\s*(\d+)\s*,\s*(\d+)\s*,\s*(\d+)\s*,\s*3\s*,?\s*\))");
+    if (dict.find("'<f4'") == std::string::npos || dict.find("'fortran_order': False") == std::string::npos ||
+        !std::regex_search(dict, m, shape_re))
+        throw bad("expected a float32 C-order array of shape (planes, height, width, 3)");
+    NpyCube c;
+    long long p = std::stoll(m[1]), h = std::stoll(m[2]), w = std::stoll(m[3]);
+    if (p < 1 || h < 1 || w < 1 || p > 1000000 || h > 65536 || w > 65536 || p * h * w > (1ll << 33))
+        throw bad("implausible shape");
+    c.planes = static_cast<int>(p);
+    c.height = static_cast<int>(h);
+    c.width = static_cast<int>(w);
+    c.data.resize(static_cast<size_t>(p * h * w * 3));
+    if (std::fread(c.data.data(), sizeof(float), c.data.size(), f) != c.data.size()) throw bad("truncated data");
+    return c;
+}
+
+}  // namespace sl
