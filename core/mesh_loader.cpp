@@ -34,6 +34,14 @@ TriangleSoup load_obj_mesh(const ShapeDesc& shape, const std::string& scene_sour
     };
     std::error_code ec;
     if (!std::filesystem::is_regular_file(shape.file, ec)) throw fail("not a readable file");
+    // Parsing holds the text's numbers several times over: refuse what could exhaust memory.
+    constexpr uintmax_t kMaxObjBytes = uintmax_t(1) << 30;
+    uintmax_t size = std::filesystem::file_size(shape.file, ec);
+    if (ec) throw fail("not a readable file");
+    if (size == 0) throw fail("is empty");
+    if (size > kMaxObjBytes)
+        throw fail("is " + std::to_string(size >> 20) + " MiB; loading it would need about " +
+                   std::to_string(3 * (size >> 20)) + " MiB, and meshes are limited to 1024 MiB of OBJ text");
     tinyobj::ObjReaderConfig config;
     config.triangulate = true;
     config.vertex_color = false;
@@ -59,7 +67,7 @@ TriangleSoup load_obj_mesh(const ShapeDesc& shape, const std::string& scene_sour
             for (int k = 0; k < 3; ++k) {
                 int vi = sh.mesh.indices[f + k].vertex_index;
                 if (vi < 0 || static_cast<size_t>(vi) >= nverts)
-                    throw fail("face index out of range in shape '" + sh.name + "'");
+                    throw fail("face index out of range" + (sh.name.empty() ? std::string() : " in object '" + sh.name + "'"));
                 idx[k] = static_cast<uint32_t>(vi);
             }
             Vec3 a = soup.vertices[idx[0]], b = soup.vertices[idx[1]], c = soup.vertices[idx[2]];

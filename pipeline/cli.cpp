@@ -60,6 +60,8 @@ int render(const RunOptions& o) {
         throw InputError("command line: --cube cannot be combined with --resume (the cube needs every section)");
     const std::string fingerprint = settings_fingerprint(scene, plan.sections, o.strategy);
 
+    RenderContext ctx(scene);  // meshes and the BVH: input errors here come before any output exists
+
     OutputSettings out;
     out.video = o.output;
     out.exr_dir = o.exr_dir;
@@ -76,7 +78,6 @@ int render(const RunOptions& o) {
                     {kFingerprintKey, fingerprint}};
     FrameOutputs outputs(out);  // every output is checked before rendering starts
 
-    RenderContext ctx(scene);
     PipelineJob job;
     job.ctx = &ctx;
     job.plan = plan;

@@ -53,8 +53,8 @@ int retime(const RunOptions& o) {
     refuse(o.sections.has_value() || o.max_memory_bytes.has_value(), "--sections/--max-memory");
     refuse(!o.cube_path.empty() || o.resume, "--cube/--resume");
 
-    CubeInfo info = read_sidecar(o.scene_path);
     NpyCube cube = read_npy_cube(o.scene_path);
+    CubeInfo info = read_sidecar(o.scene_path);
     if (cube.planes != info.frames + 2 || cube.width != info.width || cube.height != info.height)
         throw InputError(o.scene_path + ": the array's shape does not match its side-car file");
 

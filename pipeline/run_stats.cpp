@@ -2,10 +2,12 @@
 
 #include <sys/resource.h>
 
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "core/errors.h"
+#include "stages/output/atomic_file.h"
 
 namespace sl {
 
@@ -48,13 +50,21 @@ void write_stats_json(const std::string& path, const RunSummary& s) {
     j["sections_overlap"] = s.plan.overlap;
     j["exposure"] = s.exposure;
     j["interrupted"] = p.interrupted;
-    std::string tmp = path + ".tmp";
+    // A device or FIFO (/dev/stdout, a pipe) is written in place, never replaced by a rename.
+    std::error_code ec;
+    auto type = std::filesystem::status(path, ec).type();
+    bool in_place = !ec && type != std::filesystem::file_type::regular && type != std::filesystem::file_type::not_found;
+    std::string target = in_place ? path : temp_sibling(path);
     {
-        std::ofstream f(tmp);
+        std::ofstream f(target);
         f << j.dump(2) << "\n";
-        if (!f) throw RuntimeFailure("--stats " + path + ": cannot write");
+        f.flush();
+        if (!f) {
+            if (!in_place) discard_file(target);
+            throw RuntimeFailure("--stats " + path + ": cannot write");
+        }
     }
-    if (std::rename(tmp.c_str(), path.c_str()) != 0) throw RuntimeFailure("--stats " + path + ": cannot write");
+    if (!in_place) commit_file(target, path);
 }
 
 }  // namespace sl

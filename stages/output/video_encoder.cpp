@@ -44,8 +44,15 @@ const Container& container_for(const std::string& path) {
     for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
     for (const Container& c : kContainers)
         if (ext == c.ext) return c;
+    // An existing device or FIFO without an extension (/dev/null, a named pipe): Matroska,
+    // which streams without seeking back.
+    std::error_code ec;
+    auto st = std::filesystem::status(path, ec);
+    if (ext.empty() && !ec && (st.type() == std::filesystem::file_type::character ||
+                               st.type() == std::filesystem::file_type::fifo))
+        return kContainers[2];
     throw InputError("-o " + path + ": unknown video container '" + ext +
-                     "' (use .mp4, .mov, .mkv, .webm or -)");
+                     "' (use .mp4, .mov, .mkv, .webm, - for stdout, or a device or FIFO)");
 }
 
 std::string quoted(const std::string& s) { return "'" + s + "'"; }
@@ -284,7 +291,8 @@ struct VideoEncoder::State {
     void finish() {
         if (finished) return;
         finished = true;
-        if (failed) {  // a half-written stream cannot be finished; drop it
+        // A half-written stream cannot be finished, and a file with no frame is no video: drop.
+        if (failed || (frames == 0 && renamed_at_end)) {
             release();
             return;
         }

@@ -1,0 +1,155 @@
+// Runs every row of docs/bad-inputs.md through the real program: the exit status and the one
+// `error:` line must be what the page says. SLOWLIGHT_UPDATE_BAD_INPUTS=1 rewrites the page.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <regex>
+
+#include "process.h"
+
+namespace sl {
+namespace {
+
+namespace fs = std::filesystem;
+
+const nlohmann::json& base_scene() {
+    static const nlohmann::json base = nlohmann::json::parse(R"({
+        "camera": {"position": [0, 1, 3], "look_at": [0, 1, 0], "width": 16, "height": 16},
+        "materials": {"w": {"type": "diffuse", "albedo": [0.5, 0.5, 0.5]}},
+        "shapes": [{"type": "quad", "corner": [-1, 0, 1], "edge1": [2, 0, 0], "edge2": [0, 0, -2], "material": "w"}],
+        "lights": [{"type": "point", "position": [0, 1.5, 0], "power": [1, 1, 1]}],
+        "time": {"start_ns": 0, "end_ns": 10, "frames": 2},
+        "render": {"passes": 1, "photons_per_pass": 100}})");
+    return base;
+}
+
+struct Row {
+    std::string line, what, args, scene;
+    int exit = 0;
+    std::string err;
+};
+
+std::string unquote(const std::string& cell) {  // `text` -> text
+    size_t a = cell.find('`'), b = cell.rfind('`');
+    return a == std::string::npos || a == b ? "" : cell.substr(a + 1, b - a - 1);
+}
+
+std::vector<std::string> cells(const std::string& line) {
+    std::vector<std::string> out;
+    std::string cur;
+    bool in_code = false;
+    for (size_t i = 1; i < line.size(); ++i) {
+        char c = line[i];
+        if (c == '`') in_code = !in_code;
+        if (c == '|' && !in_code) {
+            out.push_back(cur);
+            cur.clear();
+        } else {
+            cur += c;
+        }
+    }
+    return out;
+}
+
+std::string doc_path() { return std::string(test::source_dir()) + "/docs/bad-inputs.md"; }
+
+std::vector<Row> read_rows() {
+    std::ifstream f(doc_path());
+    std::vector<Row> rows;
+    bool table = false;
+    for (std::string line; std::getline(f, line);) {
+        if (line.rfind("|---", 0) == 0) { table = true; continue; }
+        if (!table || line.rfind("| ", 0) != 0) continue;
+        auto c = cells(line);
+        if (c.size() < 5) continue;
+        Row r;
+        r.line = line;
+        r.what = c[0].substr(1, c[0].size() - 2);
+        r.args = unquote(c[1]);
+        r.scene = unquote(c[2]);
+        r.exit = std::stoi(c[3]);
+        r.err = unquote(c[4]);
+        rows.push_back(r);
+    }
+    return rows;
+}
+
+void make_fixtures(const std::string& dir) {
+    fs::create_directories(dir + "/fixtures/out.mp4");
+    std::ofstream(dir + "/fixtures/empty.obj");
+    std::ofstream garbage(dir + "/fixtures/garbage.obj", std::ios::binary);
+    for (int i = 0; i < 2048; ++i) garbage.put(static_cast<char>(i * 37));
+    std::ofstream(dir + "/fixtures/bad_index.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99\n";
+    std::ofstream(dir + "/fixtures/flat.obj") << "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n";
+    std::ofstream(dir + "/fixtures/huge.obj");
+    fs::resize_file(dir + "/fixtures/huge.obj", uintmax_t(2) << 30);  // sparse: no disk used
+}
+
+std::string scene_text(const std::string& cell) {
+    if (cell.rfind("raw:", 0) == 0) return nlohmann::json::parse(cell.substr(4)).get<std::string>();
+    nlohmann::json s = base_scene();
+    if (cell.rfind("patch:", 0) == 0) s.merge_patch(nlohmann::json::parse(cell.substr(6)));
+    std::string text = s.dump();
+    if (cell.rfind("sub:", 0) == 0) {
+        size_t arrow = cell.find("=>");
+        std::string from = cell.substr(4, arrow - 4), to = cell.substr(arrow + 2);
+        size_t at = text.find(from);
+        if (at == std::string::npos) throw std::runtime_error("sub pattern not in the base scene: " + from);
+        text.replace(at, from.size(), to);
+    }
+    return text;
+}
+
+std::vector<std::string> split_args(const std::string& s) {
+    std::vector<std::string> out;
+    std::istringstream in(s);
+    for (std::string a; in >> a;) out.push_back(a == "SCENE" ? "bad.json" : a);
+    if (!out.empty() && out[0] == "render") out.push_back("--no-progress");
+    return out;
+}
+
+TEST(BadInputs, EveryDocumentedCaseGetsItsOneErrorLine) {
+    std::vector<Row> rows = read_rows();
+    ASSERT_GE(rows.size(), 40u);
+    const bool update = std::getenv("SLOWLIGHT_UPDATE_BAD_INPUTS") != nullptr;
+    std::string dir = test::fresh_dir("bad_inputs");
+    make_fixtures(dir);
+    std::ifstream in(doc_path());
+    std::stringstream doc;
+    doc << in.rdbuf();
+    std::string page = doc.str();
+    for (Row& r : rows) {
+        SCOPED_TRACE(r.what);
+        fs::remove(dir + "/bad.json");
+        if (r.scene != "-") std::ofstream(dir + "/bad.json", std::ios::binary) << scene_text(r.scene);
+        // Run in the scratch folder so that messages name relative paths.
+        std::string cwd = fs::current_path();
+        fs::current_path(dir);
+        test::RunResult res = test::run(split_args(r.args), dir, 120);
+        fs::current_path(cwd);
+        auto errors = test::error_lines(res.err);
+        std::string err;
+        for (auto& e : errors) err += (err.empty() ? "" : " / ") + e;
+        err = std::regex_replace(err, std::regex(dir), ".");
+        EXPECT_EQ(errors.size(), 1u) << res.err;
+        EXPECT_TRUE(res.status == 1 || res.status == 2) << res.status;
+        if (update) {
+            std::string row = "| " + r.what + " | `" + r.args + "` | `" + r.scene + "` | " + std::to_string(res.status) +
+                              " | `" + err + "` |";
+            page.replace(page.find(r.line), r.line.size(), row);
+        } else {
+            EXPECT_EQ(res.status, r.exit);
+            EXPECT_EQ(err, r.err);
+        }
+        // Nothing that looks whole is left behind.
+        EXPECT_FALSE(fs::exists(dir + "/out.xyz"));
+        EXPECT_FALSE(fs::exists(dir + "/no"));
+    }
+    if (update) std::ofstream(doc_path()) << page;
+    fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace sl
