@@ -1,0 +1,88 @@
+// The transient cube holds the whole time-resolved stack; `retime` makes constant and pulse
+// videos from it that equal fresh renders with that emission, without rendering again.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <filesystem>
+
+#include "process.h"
+#include "stages/output/exr_io.h"
+#include "stages/output/npy_cube.h"
+#include "stages/output/video_reader.h"
+
+namespace sl {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::vector<std::string> scene_args(const std::string& dir) {
+    // 12 frames of 2 ns over the Cornell box: pulse:4 is two frames wide.
+    return {"render", "--width", "32", "--height", "24", "--passes", "3", "--photons", "8000", "--frames", "12",
+            "--no-progress"};
+}
+
+double seconds(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+void expect_frames_close(const std::string& a, const std::string& b, int frames) {
+    for (int k = 0; k < frames; ++k) {
+        char name[32];
+        std::snprintf(name, sizeof name, "/frame_%04d.exr", k);
+        ExrImage x = read_exr(a + name), y = read_exr(b + name);
+        ASSERT_EQ(x.rgb.size(), y.rgb.size());
+        for (size_t i = 0; i < x.rgb.size(); ++i)
+            ASSERT_NEAR(x.rgb[i], y.rgb[i], 1e-4f * (1 + std::abs(y.rgb[i]))) << name << " value " << i;
+    }
+}
+
+TEST(Cube, RetimeEqualsFreshRendersOfEachEmission) {
+    std::string dir = test::fresh_dir("cube");
+    auto args = scene_args(dir);
+    args.insert(args.end(), {"--cube", dir + "/c.npy", "--exr-dir", dir + "/constant"});
+    auto t0 = std::chrono::steady_clock::now();
+    test::RunResult r = test::run(args, dir);
+    double render_s = seconds(t0);
+    ASSERT_EQ(r.status, 0) << r.err;
+
+    // The file is a NumPy array of shape (frames + 2, height, width, 3), float32.
+    NpyCube cube = read_npy_cube(dir + "/c.npy");
+    EXPECT_EQ(cube.planes, 14);
+    EXPECT_EQ(cube.height, 24);
+    EXPECT_EQ(cube.width, 32);
+    EXPECT_TRUE(fs::exists(dir + "/c.npy.json"));
+
+    // Constant emission again, from the cube alone.
+    t0 = std::chrono::steady_clock::now();
+    test::RunResult rc = test::run({"retime", dir + "/c.npy", "--exr-dir", dir + "/re_constant", "-o", dir + "/re.mkv"}, dir);
+    double retime_s = seconds(t0);
+    ASSERT_EQ(rc.status, 0) << rc.err;
+    expect_frames_close(dir + "/re_constant", dir + "/constant", 12);
+    EXPECT_EQ(read_video(dir + "/re.mkv").frames, 12);
+
+    // A pulse two frames wide: a fresh render of the same seed sees the same photons.
+    ASSERT_EQ(test::run({"retime", dir + "/c.npy", "--emission", "pulse:4", "--exr-dir", dir + "/re_pulse"}, dir).status, 0);
+    auto fresh = scene_args(dir);
+    fresh.insert(fresh.end(), {"--emission", "pulse:4", "--exr-dir", dir + "/pulse"});
+    test::RunResult rp = test::run(fresh, dir);
+    ASSERT_EQ(rp.status, 0) << rp.err;
+    expect_frames_close(dir + "/re_pulse", dir + "/pulse", 12);
+
+    std::printf("render with cube: %.2f s, retime: %.2f s (%.0f%%)\n", render_s, retime_s, 100 * retime_s / render_s);
+    fs::remove_all(dir);
+}
+
+TEST(Cube, RetimeRefusesAPulseThatIsNotWholeBuckets) {
+    std::string dir = test::fresh_dir("cube_bad");
+    auto args = scene_args(dir);
+    args.insert(args.end(), {"--cube", dir + "/c.npy"});
+    ASSERT_EQ(test::run(args, dir).status, 0);
+    test::RunResult r = test::run({"retime", dir + "/c.npy", "--emission", "pulse:3", "-o", dir + "/x.mp4"}, dir);
+    EXPECT_EQ(r.status, 2);
+    ASSERT_EQ(test::error_lines(r.err).size(), 1u) << r.err;
+    EXPECT_FALSE(fs::exists(dir + "/x.mp4"));
+    fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace sl
