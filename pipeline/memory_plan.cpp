@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <unistd.h>
 
 #include "core/errors.h"
 #include "stages/render/photon_map.h"
@@ -12,6 +14,13 @@ namespace sl {
 
 int pulse_bucket_count(const SceneDesc& scene) {
     return scene.emission.mode == EmissionMode::Pulse ? std::max(1, scene.emission.width_frames) : 1;
+}
+
+static uint64_t current_rss_bytes() {
+    std::ifstream statm("/proc/self/statm");
+    uint64_t size = 0, resident = 0;
+    statm >> size >> resident;
+    return resident * static_cast<uint64_t>(sysconf(_SC_PAGESIZE));
 }
 
 static size_t pixel_count(const SceneDesc& s) {
@@ -37,9 +46,11 @@ uint64_t fixed_overhead_bytes(const SceneDesc& scene) {
     uint64_t photons = records * (2 * sizeof(PhotonRecord) + 3 * 4 + 4) + 4 * records * 2 * 4;
     // Frames on their way out: a running sum (double), three float frames, an 8-bit frame, and
     // the encoder's own look-ahead (x264 keeps some tens of frames in 4:2:0).
-    uint64_t frames = pixels * (3 * 8 + 3 * 3 * 4 + 3) + pixels * 3 / 2 * 48;
-    const uint64_t process = 48ull << 20;  // libraries, BVH of a modest scene, thread stacks
-    return vps + photons + frames + process;
+    uint64_t frames = pixels * (3 * 8 + 3 * 3 * 4 + 3);
+    // The encoder (x264 keeps a look-ahead of frames; measured ~260 bytes per pixel at 512x512)
+    // and the process as it stands (libraries, the scene's BVH): measured, not guessed.
+    uint64_t encoder = pixels * 260;
+    return vps + photons + frames + encoder + current_rss_bytes() + (16ull << 20);
 }
 
 MemoryPlan plan_memory(const SceneDesc& scene, const RunOptions& options) {
@@ -58,18 +69,18 @@ MemoryPlan plan_memory(const SceneDesc& scene, const RunOptions& options) {
         uint64_t one_frame = section_buffer_bytes(scene, frames);
         if (one_frame > budget)
             throw InputError("command line: --max-memory: " + format_bytes(budget) +
-                             " cannot hold even one frame per section; that needs " + format_bytes(one_frame) +
-                             " of buffers (plus about " + format_bytes(plan.fixed_overhead_bytes) + " fixed)");
+                             " cannot hold even one frame per section; that needs " + std::to_string(one_frame) +
+                             " bytes of buffers, plus about " + format_bytes(plan.fixed_overhead_bytes) + " fixed");
         // The smallest K that fits; section sizes only change where ceil(F/K) does.
         int k = 1;
         while (k < frames && section_buffer_bytes(scene, k) > budget) ++k;
         plan.sections = k;
     }
     plan.buffer_bytes_per_section = section_buffer_bytes(scene, plan.sections);
-    // Overlap encoding of one section with rendering the next only when both fit the budget
-    // (with no budget: when the buffers are small next to the machine-sized default of 2 GiB).
-    uint64_t budget = options.max_memory_bytes.value_or(2ull << 30);
-    plan.overlap = plan.sections > 1 && 2 * plan.buffer_bytes_per_section <= budget;
+    // Encoding one section while the next renders needs two sections' buffers: only when a
+    // budget says both fit (sections were asked for to save memory, so never by default).
+    plan.overlap = plan.sections > 1 && options.max_memory_bytes &&
+                   2 * plan.buffer_bytes_per_section <= *options.max_memory_bytes;
     return plan;
 }
 

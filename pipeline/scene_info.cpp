@@ -20,7 +20,8 @@ void print_scene_info(std::ostream& out, const SceneDesc& s) {
     out << "  sections K   buffers per section\n";
     for (int k : {1, 2, 4, 8}) {
         if (k > s.time.frames) break;
-        out << "  " << k << (k < 10 ? "            " : "           ") << format_bytes(section_buffer_bytes(s, k)) << "\n";
+        uint64_t b = section_buffer_bytes(s, k);
+        out << "  " << k << (k < 10 ? "            " : "           ") << format_bytes(b) << " (" << b << " bytes)\n";
     }
     out << "  budget       smallest K (--max-memory)\n";
     for (uint64_t mib : {64ull, 256ull, 1024ull, 4096ull}) {

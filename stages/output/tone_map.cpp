@@ -1,6 +1,10 @@
 #include "stages/output/tone_map.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <vector>
@@ -39,13 +43,30 @@ double exposure_from_steady(const float* rgb, int w, int h) {
 }
 
 void tone_map_srgb8(const float* rgb, int w, int h, double exposure, uint8_t* out_rgb8) {
+    // The sRGB curve without a pow per value: for every byte b, the smallest linear value that
+    // rounds to it; a binary search over these 256 boundaries gives the formula's byte.
+    static const std::array<double, 256> lower = [] {
+        std::array<double, 256> t{};
+        t[0] = 0;
+        for (int b = 1; b < 256; ++b) {
+            double lo = 0, hi = 1;  // smallest c with round(255 * oetf(c)) >= b
+            for (int it = 0; it < 60; ++it) {
+                double mid = 0.5 * (lo + hi);
+                (std::lround(255.0 * srgb_oetf(mid)) >= b ? hi : lo) = mid;
+            }
+            t[b] = hi;
+        }
+        return t;
+    }();
     const size_t n = size_t(w) * size_t(h) * 3;
-    for (size_t i = 0; i < n; ++i) {
-        const double v = exposure * rgb[i];
-        // Written so that NaN fails the first test and lands on 0.
-        const double c = v > 0 ? std::min(v, 1.0) : 0.0;
-        out_rgb8[i] = uint8_t(std::lround(255.0 * srgb_oetf(c)));
-    }
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1 << 14), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t i = r.begin(); i != r.end(); ++i) {
+            const double v = exposure * rgb[i];
+            // Written so that NaN fails the first test and lands on 0.
+            const double c = v > 0 ? std::min(v, 1.0) : 0.0;
+            out_rgb8[i] = uint8_t(std::upper_bound(lower.begin() + 1, lower.end(), c) - lower.begin() - 1);
+        }
+    });
 }
 
 }  // namespace sl

@@ -216,7 +216,7 @@ TEST(VideoEncoder, UnknownExtensionIsInputError) {
     } catch (const sl::InputError& e) {
         EXPECT_EQ(std::string(e.what()), "-o " + path +
                                              ": unknown video container '.xyz' (use .mp4, .mov, "
-                                             ".mkv, .webm or -)");
+                                             ".mkv, .webm, - for stdout, or a device or FIFO)");
     }
     EXPECT_TRUE(dir.entries().empty());
 }

@@ -102,6 +102,11 @@ std::string scene_text(const std::string& cell) {
     return text;
 }
 
+std::string mask_sizes(const std::string& s) {
+    static const std::regex size(R"([0-9]+(\.[0-9]+)? (B|KiB|MiB|GiB|TiB))");
+    return std::regex_replace(s, size, "<size>");
+}
+
 std::vector<std::string> split_args(const std::string& s) {
     std::vector<std::string> out;
     std::istringstream in(s);
@@ -141,7 +146,8 @@ TEST(BadInputs, EveryDocumentedCaseGetsItsOneErrorLine) {
             page.replace(page.find(r.line), r.line.size(), row);
         } else {
             EXPECT_EQ(res.status, r.exit);
-            EXPECT_EQ(err, r.err);
+            // Sizes such as the machine's memory differ between machines: compare them as "<size>".
+            EXPECT_EQ(mask_sizes(err), mask_sizes(r.err));
         }
         // Nothing that looks whole is left behind.
         EXPECT_FALSE(fs::exists(dir + "/out.xyz"));
