@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "core/errors.h"
+#include "stages/render/camera_segments.h"
 #include "stages/render/photon_map.h"
 #include "stages/render/section_buffer.h"
 
@@ -39,7 +40,18 @@ uint64_t fixed_overhead_bytes(const SceneDesc& scene) {
     // the encoder's own look-ahead (x264 keeps some tens of frames in 4:2:0).
     uint64_t frames = pixels * (3 * 8 + 3 * 3 * 4 + 3) + pixels * 3 / 2 * 48;
     const uint64_t process = 48ull << 20;  // libraries, BVH of a modest scene, thread stacks
-    return vps + photons + frames + process;
+    // A medium (with some extinction): volume photons, budgeted like surface records (up to 4
+    // events a path), each in its batch, concatenated, in leaf order (position + payload), with
+    // its BVH index and a node per 4; and each pixel's camera segments.
+    uint64_t volume = 0;
+    const MediumDesc& m = scene.medium;
+    if (m.present && max_component(m.sigma_a + m.sigma_s) > 0) {
+        uint64_t events = static_cast<uint64_t>(scene.render.photons_per_pass) *
+                          static_cast<uint64_t>(std::clamp(scene.render.max_depth, 1, 4));
+        volume = events * (2 * sizeof(VolumePhoton) + 4 + 3 * 4 + 40 + 32 / 4) +
+                 pixels * (CameraSegments::kPerPixel * sizeof(CameraSegment) + 1);
+    }
+    return vps + photons + frames + process + volume;
 }
 
 MemoryPlan plan_memory(const SceneDesc& scene, const RunOptions& options) {
