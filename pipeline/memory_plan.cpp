@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include "core/errors.h"
+#include "stages/render/camera_segments.h"
 #include "stages/render/photon_map.h"
 #include "stages/render/section_buffer.h"
 
@@ -47,10 +48,21 @@ uint64_t fixed_overhead_bytes(const SceneDesc& scene) {
     // Frames on their way out: a running sum (double), three float frames, an 8-bit frame, and
     // the encoder's own look-ahead (x264 keeps some tens of frames in 4:2:0).
     uint64_t frames = pixels * (3 * 8 + 3 * 3 * 4 + 3);
+    // A medium (with some extinction): volume photons, budgeted like surface records (up to 4
+    // events a path), each in its batch, concatenated, in leaf order (position + payload), with
+    // its BVH index and a node per 4; and each pixel's camera segments.
+    uint64_t volume = 0;
+    const MediumDesc& m = scene.medium;
+    if (m.present && max_component(m.sigma_a + m.sigma_s) > 0) {
+        uint64_t events = static_cast<uint64_t>(scene.render.photons_per_pass) *
+                          static_cast<uint64_t>(std::clamp(scene.render.max_depth, 1, 4));
+        volume = events * (2 * sizeof(VolumePhoton) + 4 + 3 * 4 + 40 + 32 / 4) +
+                 pixels * (CameraSegments::kPerPixel * sizeof(CameraSegment) + 1);
+    }
     // The encoder (x264 keeps a look-ahead of frames; measured ~260 bytes per pixel at 512x512)
     // and the process as it stands (libraries, the scene's BVH): measured, not guessed.
     uint64_t encoder = pixels * 260;
-    return vps + photons + frames + encoder + current_rss_bytes() + (16ull << 20);
+    return vps + photons + frames + volume + encoder + current_rss_bytes() + (16ull << 20);
 }
 
 MemoryPlan plan_memory(const SceneDesc& scene, const RunOptions& options) {

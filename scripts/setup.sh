@@ -11,6 +11,7 @@ packages=(
   libembree-dev libtbb-dev libopenimageio-dev openimageio-tools libopenexr-dev
   libavformat-dev libavcodec-dev libswscale-dev libavutil-dev ffmpeg
   nlohmann-json3-dev libtinyobjloader-dev libgtest-dev libbenchmark-dev
+  gnuplot-nox
 )
 missing=()
 for p in "${packages[@]}"; do

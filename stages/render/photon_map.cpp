@@ -12,11 +12,15 @@ namespace sl {
 namespace {
 
 // Follows one photon path, storing a record at every diffuse vertex whose light is not
-// already computed as direct light (vertex 1 is direct, except for lasers).
+// already computed as direct light (vertex 1 is direct, except for lasers), and, in a medium,
+// a volume photon at every scattering event (all of them: the camera pass computes no
+// single scattering, the beam estimate gathers it).
 struct PhotonPath {
     const RenderContext& ctx;
     const SectionLayout& layout;
     std::vector<PhotonRecord>& out;
+    const HomogeneousMedium* medium;   // null in vacuum
+    std::vector<VolumePhoton>* volume;  // with a medium
     uint64_t rays = 0;
 
     void trace(Rng& rng) {
@@ -31,7 +35,33 @@ struct PhotonPath {
         for (int depth = 1; depth <= max_depth; ++depth) {
             SurfaceHit hit;
             ++rays;
-            if (!ctx.geometry.intersect(o, d, 1e-7f, 1e30f, hit)) return;
+            const bool found = ctx.geometry.intersect(o, d, 1e-7f, 1e30f, hit);
+            if (medium && !inside) {  // dielectric solids hold no medium
+                float t0, t1;
+                if (medium->clip(o, d, 0, found ? hit.t : 1e30f, t0, t1)) {
+                    float u1 = rng.uniform(), u2 = rng.uniform();
+                    FreeFlight ff = medium->sample_free_flight(t1 - t0, u1, u2);
+                    flux *= ff.weight;  // at an event: Tr sigma_s / pdf; else Tr / P(no event)
+                    if (ff.scattered) {
+                        const float s = t0 + ff.distance;
+                        t += s / kSpeedOfLight;
+                        if (t >= cut || is_black(flux)) return;
+                        o = o + d * s;
+                        if (volume)
+                            volume->push_back({o.x, o.y, o.z, d.x, d.y, d.z, flux.x, flux.y, flux.z,
+                                               static_cast<uint32_t>(depth), t});
+                        if (depth == max_depth) return;
+                        // Russian roulette as at surfaces, on the event's weight.
+                        float q = depth >= 3 ? std::min(1.0f, max_component(ff.weight)) : 1.0f;
+                        if (q < 1 && rng.uniform() >= q) return;
+                        if (q < 1) flux = flux * (1.0f / q);
+                        d = medium->sample_phase(d, rng.uniform(), rng.uniform());
+                        continue;
+                    }
+                    if (is_black(flux)) return;
+                }
+            }
+            if (!found) return;
             t += hit.t * (inside ? inside_ior : 1.0f) / kSpeedOfLight;
             // Nothing this path reaches from here on can arrive inside this section.
             if (t >= cut) return;
@@ -68,20 +98,24 @@ uint64_t PhotonMap::bytes() const {
     uint64_t b = (staged_.capacity() + sorted_.capacity()) * sizeof(PhotonRecord) +
                  (staged_slot_.capacity() + cell_start_.capacity() + partition_start_.capacity()) * sizeof(uint32_t);
     for (const Batch& v : batches_)
-        b += v.records.capacity() * sizeof(PhotonRecord) + (v.hashes.capacity() + v.partitions.capacity()) * 4;
+        b += v.records.capacity() * sizeof(PhotonRecord) + (v.hashes.capacity() + v.partitions.capacity()) * 4 +
+             v.volume.capacity() * sizeof(VolumePhoton);
     return b;
 }
 
 void PhotonMap::build(const RenderContext& ctx, const SectionLayout& layout, int pass, int64_t count,
-                      double cell_size, PhotonTraceCounters& counters) {
+                      double cell_size, PhotonTraceCounters& counters, VolumePhotonMap* volume) {
+    const HomogeneousMedium* medium = ctx.medium ? &*ctx.medium : nullptr;
+    if (!medium) volume = nullptr;
     const size_t nbatches = ctx.lights.has_emission() ? static_cast<size_t>((count + kBatch - 1) / kBatch) : 0;
     batches_.resize(nbatches);
     inv_cell_ = static_cast<float>(1.0 / std::max(cell_size, 1e-12));
     tbb::parallel_for(size_t(0), nbatches, [&](size_t b) {
         Batch& batch = batches_[b];
         batch.records.clear();
+        batch.volume.clear();
         Rng rng(ctx.scene.render.seed, 2, static_cast<uint64_t>(pass), b);
-        PhotonPath path{ctx, layout, batch.records};
+        PhotonPath path{ctx, layout, batch.records, medium, volume ? &batch.volume : nullptr};
         int64_t n = std::min<int64_t>(kBatch, count - static_cast<int64_t>(b) * kBatch);
         for (int64_t i = 0; i < n; ++i) path.trace(rng);
         batch.hashes.resize(batch.records.size());
@@ -96,6 +130,13 @@ void PhotonMap::build(const RenderContext& ctx, const SectionLayout& layout, int
     for (const Batch& v : batches_) total += v.records.size();
     counters.stored.fetch_add(total, std::memory_order_relaxed);
     sort_into_grid(total);
+    if (volume) {
+        std::vector<const std::vector<VolumePhoton>*> parts;
+        parts.reserve(batches_.size());
+        for (const Batch& v : batches_) parts.push_back(&v.volume);
+        volume->build(parts);
+        counters.stored_volume.fetch_add(volume->size(), std::memory_order_relaxed);
+    }
 }
 
 // A stable two-step counting sort by hash slot that runs in parallel and gives the same order

@@ -9,6 +9,7 @@
 
 #include "stages/render/render_context.h"
 #include "stages/render/section_layout.h"
+#include "stages/render/volume_photons.h"
 
 namespace sl {
 
@@ -21,16 +22,19 @@ struct PhotonRecord {
 };
 
 struct PhotonTraceCounters {
-    std::atomic<uint64_t> photons{0}, rays{0}, stored{0};
+    std::atomic<uint64_t> photons{0}, rays{0}, stored{0}, stored_volume{0};
 };
 
 class PhotonMap {
 public:
     // Traces `count` photon paths of pass `pass` and builds the grid with the given cell size.
+    // With a medium in ctx, paths also scatter in it; its events go to `volume` when given.
     void build(const RenderContext& ctx, const SectionLayout& layout, int pass, int64_t count,
-               double cell_size, PhotonTraceCounters& counters);
+               double cell_size, PhotonTraceCounters& counters, VolumePhotonMap* volume = nullptr);
 
     size_t size() const { return sorted_.size(); }
+    // This pass's surface records (grid order), e.g. for flux bookkeeping in tests.
+    const std::vector<PhotonRecord>& records() const { return sorted_; }
     uint64_t bytes() const;
 
     // Calls f(const PhotonRecord&) for every photon within sqrt(r2) of p.
@@ -52,6 +56,7 @@ private:
         std::vector<PhotonRecord> records;
         std::vector<uint32_t> hashes;      // each record's cell hash (before masking)
         std::vector<uint32_t> partitions;  // records per partition, then write cursors
+        std::vector<VolumePhoton> volume;  // medium scattering events (with a medium only)
     };
     std::vector<Batch> batches_;        // kept between passes: no reallocation per photon
     std::vector<PhotonRecord> staged_;  // records grouped by partition (batch order kept)
@@ -70,7 +75,9 @@ void PhotonMap::for_each_near(float px, float py, float pz, float r2, F&& f) con
     int32_t x0 = cell(px - r), x1 = cell(px + r);
     int32_t y0 = cell(py - r), y1 = cell(py + r);
     int32_t z0 = cell(pz - r), z1 = cell(pz + r);
-    uint32_t seen[8];
+    // Cells are twice the largest radius wide, so a gather sphere spans at most 2 cells per
+    // axis (3 if rounding puts it on an edge): 27 is always enough, and every cell is visited.
+    uint32_t seen[27];
     int nseen = 0;
     for (int32_t ix = x0; ix <= x1; ++ix)
         for (int32_t iy = y0; iy <= y1; ++iy)
@@ -78,7 +85,8 @@ void PhotonMap::for_each_near(float px, float py, float pz, float r2, F&& f) con
                 uint32_t h = hash_cell(ix, iy, iz) & mask_;
                 bool dup = false;  // two cells may share a slot: visit each slot once
                 for (int k = 0; k < nseen; ++k) dup |= seen[k] == h;
-                if (dup || nseen == 8) continue;
+                if (dup) continue;
+                if (nseen == 27) continue;  // unreachable while r <= cell size; guards the array
                 seen[nseen++] = h;
                 for (uint32_t i = cell_start_[h], e = cell_start_[h + 1]; i < e; ++i) {
                     const PhotonRecord& ph = sorted_[i];

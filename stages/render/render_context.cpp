@@ -14,6 +14,13 @@ RenderContext::RenderContext(const SceneDesc& desc)
     width = desc.camera.width;
     height = desc.camera.height;
     initial_radius = desc.render.radius > 0 ? desc.render.radius : choose_initial_radius(desc, geometry, camera);
+    if (desc.medium.present) {
+        HomogeneousMedium m(desc.medium, geometry.bounds_min(), geometry.bounds_max());
+        if (m.active()) {
+            medium.emplace(m);
+            volume_radius = choose_volume_radius(desc, m, camera);
+        }
+    }
 }
 
 float choose_initial_radius(const SceneDesc& desc, const SceneGeometry& geometry, const PinholeCamera& camera) {
@@ -21,6 +28,15 @@ float choose_initial_radius(const SceneDesc& desc, const SceneGeometry& geometry
     float diag = length(hi - lo);
     if (!(diag > 0)) return 0.01f;
     float dist = std::max(length((lo + hi) * 0.5f - camera.position()), 1e-6f * diag);
+    float r = 3.0f * camera.pixel_footprint(dist);
+    return std::clamp(r, 1e-5f * diag, 0.05f * diag);
+}
+
+float choose_volume_radius(const SceneDesc& desc, const HomogeneousMedium& medium, const PinholeCamera& camera) {
+    if (desc.render.radius > 0) return desc.render.radius;
+    Vec3 lo = medium.box_min(), hi = medium.box_max();
+    float diag = length(hi - lo);
+    float dist = std::max(length((lo + hi) * 0.5f - camera.position()), 0.1f * diag);
     float r = 3.0f * camera.pixel_footprint(dist);
     return std::clamp(r, 1e-5f * diag, 0.05f * diag);
 }

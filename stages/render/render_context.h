@@ -2,10 +2,12 @@
 // Everything a convergence reads and never changes: the scene, its BVH, lights, camera,
 // time axis and the settings that shape the estimate.
 #include <memory>
+#include <optional>
 
 #include "config/scene_desc.h"
 #include "core/camera.h"
 #include "core/light_set.h"
+#include "core/medium.h"
 #include "core/scene_geometry.h"
 #include "core/timeline.h"
 
@@ -23,6 +25,10 @@ struct RenderContext {
     Timeline timeline;
     int pulse_buckets = 1;       // pulse width in buckets (1 for constant emission)
     float initial_radius = 0;    // meters
+    // The medium, only when there is something to compute (present, some extinction, a box
+    // of some volume): without it every stage runs its vacuum code and allocates nothing.
+    std::optional<HomogeneousMedium> medium;
+    float volume_radius = 0;     // initial radius of the beam estimate (meters), with a medium
     int width = 0, height = 0;
     size_t pixels() const { return static_cast<size_t>(width) * height; }
     bool has_ambient() const { return !is_black(scene.render.ambient); }
@@ -31,5 +37,9 @@ struct RenderContext {
 // The initial gather radius: the scene's own, or about three pixel footprints at the middle of
 // the scene, capped at 5% of the scene's size.
 float choose_initial_radius(const SceneDesc& desc, const SceneGeometry& geometry, const PinholeCamera& camera);
+
+// The initial volume radius: the scene's own, or about three pixel footprints at the middle of
+// the medium (but at least a tenth of its size away), capped at 5% of the medium's size.
+float choose_volume_radius(const SceneDesc& desc, const HomogeneousMedium& medium, const PinholeCamera& camera);
 
 }  // namespace sl

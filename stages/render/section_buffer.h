@@ -34,6 +34,7 @@ struct SectionBuffer {
     std::vector<float> accum;           // [tile][slot][pixel in tile][rgb], sum over passes
     std::vector<float> ambient;         // [pixel][rgb] sum over passes; empty without ambient
     double max_radius = 0;              // the largest radius, for the photon grid's cell size
+    double volume_radius2 = 0;          // the beam estimate's radius^2 this pass (with a medium)
     int passes_done = 0;
 };
 

@@ -31,6 +31,8 @@ struct PixelTracer {
     VisiblePoints& vps;
     SectionBuffer& buffer;
     int pass;
+    CameraSegments* segments;         // with a medium, when the beam estimate wants them
+    const HomogeneousMedium* medium;  // null in vacuum
     uint64_t rays = 0;
 
     void trace(size_t pixel) {
@@ -46,11 +48,15 @@ struct PixelTracer {
         int specular = 0;
         float tnear = 0;
         vps.valid[pixel] = 0;
+        if (segments) segments->count[pixel] = 0;
         const bool tof = sc.render.camera_tof;
         for (;;) {
             SurfaceHit hit;
             ++rays;
-            if (!ctx.geometry.intersect(o, d, tnear, 1e30f, hit)) return;
+            const bool found = ctx.geometry.intersect(o, d, tnear, 1e30f, hit);
+            // Dielectric solids hold no medium: only pieces outside them cross it.
+            if (medium && !inside) cross_medium(pixel, o, d, tnear, found ? hit.t : 1e30f, leg_ns, specular, beta);
+            if (!found) return;
             leg_ns += hit.t * (inside ? inside_ior : 1.0f) / kSpeedOfLight;
             if (hit.light >= 0) {  // an emitter seen directly (or through specular surfaces)
                 const LightDesc& l = sc.lights[hit.light];
@@ -61,7 +67,7 @@ struct PixelTracer {
             const MaterialDesc& m = sc.materials[hit.material];
             Vec3 nf = dot(d, hit.normal) < 0 ? hit.normal : -hit.normal;
             if (m.type == MaterialType::Diffuse) {
-                store_visible_point(pixel, hit.position, nf, beta * m.albedo, leg_ns, specular, rng);
+                store_visible_point(pixel, hit.position, hit.t, nf, beta * m.albedo, leg_ns, specular, rng);
                 return;
             }
             if (++specular >= sc.render.max_depth) return;
@@ -77,7 +83,24 @@ struct PixelTracer {
         }
     }
 
-    void store_visible_point(size_t pixel, Vec3 p, Vec3 nf, Vec3 albedo_beta, double leg_ns,
+    // Records the piece of o + t d, t in (tnear, tfar), inside the medium and attenuates the
+    // path's throughput by its transmittance.
+    void cross_medium(size_t pixel, Vec3 o, Vec3 d, float tnear, float tfar, double leg_ns, int specular, Vec3& beta) {
+        float t0, t1;
+        if (!medium->clip(o, d, tnear, tfar, t0, t1)) return;
+        if (segments && segments->count[pixel] < CameraSegments::kPerPixel) {
+            CameraSegment& s = segments->segments[pixel * CameraSegments::kPerPixel + segments->count[pixel]++];
+            s.origin = o + d * t0;
+            s.dir = d;
+            s.length = t1 - t0;
+            s.beta = beta;
+            s.depth_left = static_cast<uint32_t>(ctx.scene.render.max_depth - specular);
+            s.camera_ns = leg_ns + t0 / kSpeedOfLight;
+        }
+        beta *= medium->transmittance(t1 - t0);
+    }
+
+    void store_visible_point(size_t pixel, Vec3 p, float hit_t, Vec3 nf, Vec3 albedo_beta, double leg_ns,
                              int specular, Rng& rng) {
         const SceneDesc& sc = ctx.scene;
         const bool tof = sc.render.camera_tof;
@@ -95,7 +118,7 @@ struct PixelTracer {
             amb[0] += a.x; amb[1] += a.y; amb[2] += a.z;
         }
         // Direct light: one shadow ray per light, arriving after the light-to-point length.
-        Vec3 origin = p + nf * ray_epsilon(p, 0);
+        Vec3 origin = p + nf * ray_epsilon(p, hit_t);  // the hit's error grows with the ray's length
         for (size_t i = 0; i < ctx.lights.count(); ++i) {
             DirectLightSample s;
             float u1 = rng.uniform(), u2 = rng.uniform();
@@ -103,7 +126,9 @@ struct PixelTracer {
             ++rays;
             if (ctx.geometry.occluded(origin, s.to_light, 0, s.distance * (1 - 1e-4f))) continue;
             double t = s.distance / kSpeedOfLight + back_ns;
-            deposit(buffer, ctx.timeline, pixel, t, f * s.irradiance);
+            Vec3 e = s.irradiance;
+            if (medium) e *= medium->transmittance(origin, s.to_light, s.distance);
+            deposit(buffer, ctx.timeline, pixel, t, f * e);
         }
     }
 };
@@ -111,10 +136,13 @@ struct PixelTracer {
 }  // namespace
 
 void camera_pass(const RenderContext& ctx, int pass, VisiblePoints& vps, SectionBuffer& buffer,
-                 CameraPassCounters& counters) {
+                 CameraPassCounters& counters, CameraSegments* segments) {
     if (vps.valid.size() != ctx.pixels()) vps.resize(ctx.pixels());
+    const HomogeneousMedium* medium = ctx.medium ? &*ctx.medium : nullptr;
+    if (!medium) segments = nullptr;
+    if (segments && segments->pixels() != ctx.pixels()) segments->resize(ctx.pixels());
     tbb::parallel_for(tbb::blocked_range<size_t>(0, ctx.pixels(), 256), [&](const tbb::blocked_range<size_t>& r) {
-        PixelTracer tracer{ctx, vps, buffer, pass};
+        PixelTracer tracer{ctx, vps, buffer, pass, segments, medium};
         for (size_t p = r.begin(); p != r.end(); ++p) tracer.trace(p);
         counters.rays.fetch_add(tracer.rays, std::memory_order_relaxed);
     });

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "stages/render/camera_segments.h"
 #include "stages/render/render_context.h"
 #include "stages/render/section_buffer.h"
 
@@ -28,7 +29,10 @@ struct CameraPassCounters {
 };
 
 // Fills `vps` for pass `pass` and adds direct light, seen emitters and ambient to `buffer`.
+// With a medium (ctx.medium), everything seen is attenuated by the transmittance of the camera
+// path and of the shadow ray, and the path's pieces inside the medium go to `segments` (which
+// must then be given) for the beam estimate.
 void camera_pass(const RenderContext& ctx, int pass, VisiblePoints& vps, SectionBuffer& buffer,
-                 CameraPassCounters& counters);
+                 CameraPassCounters& counters, CameraSegments* segments = nullptr);
 
 }  // namespace sl

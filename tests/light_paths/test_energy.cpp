@@ -6,7 +6,7 @@
 //   With rho_w = 0 the floor must show exactly its direct light whatever max_depth is.
 // * With max_depth 2 the floor's indirect light is the wall's first bounce only. It must scale
 //   linearly with rho_w (rho_w and rho_w / 2, rendered with different seeds: ratio 2 within noise),
-//   and it must match the one-bounce integral (DISABLED_ until the photon-gather bug is fixed),
+//   and it must match the one-bounce integral,
 //   evaluated here by quadrature:
 //       L_ind(x) = rho_f/pi * integral over the wall of (rho_w/pi) E_w(y) cos_x cos_y / |x - y|^2 dA_y,
 //       E_w(y) = (P / 4 pi) cos_l / |y - light|^2.
@@ -151,11 +151,11 @@ TEST(Energy, FirstBounceIsLinearInAlbedoAndArrivesAfterTheShortestBouncePath) {
                 last_quiet);
 }
 
-// DISABLED: exposes the photon-gather bug (PhotonMap::for_each_near visits at most 8 grid cells
+// Regression test: exposed the photon-gather bug (PhotonMap::for_each_near visits at most 8 grid cells
 // while a gather sphere of radius = cell size spans up to 3 x 3 x 3; photons in the other cells
-// are silently dropped, here about a third of the indirect light). See the report; with the
+// are silently dropped, here about a third of the indirect light). With the
 // fix this passes (rendered / quadrature = 0.997 +- 0.011 over 8 seeds).
-TEST(Energy, DISABLED_FirstBounceMatchesTheOneBounceIntegral) {
+TEST(Energy, FirstBounceMatchesTheOneBounceIntegral) {
     const float rho_w = 0.8f;
     SceneDesc s = floor_and_wall(rho_w, 2, 1);
     auto px = floor_pixels(s);

@@ -9,7 +9,7 @@
 //    energy-weighted mean frame, which must match the bucket of the pixel-centre path +- 1 (the
 //    gather radius and the pixel footprint are a third of a bucket). Its radiance must also be
 //    that of the image light: rho/pi * reflectance * I cos / |x - light'|^2, I = P / (2 pi (1 - cos))
-//    (a separate test, DISABLED_ until the photon-gather bug is fixed: see below).
+//    (a separate test, below).
 // 2. The camera sees a floor through a mirror with camera_tof: the way back to the camera goes
 //    through the mirror, so the arrival is later by |x - camera'| / c (camera' the camera's mirror
 //    image), not by the straight |x - camera| / c.
@@ -113,10 +113,10 @@ TEST(Mirror, ImageOfSpotInMirrorLightsUpAtReflectedPathLength) {
     }
 }
 
-// DISABLED: exposes the photon-gather bug (PhotonMap::for_each_near visits at most 8 of the up
+// Regression test: exposed the photon-gather bug (PhotonMap::for_each_near visits at most 8 of the up
 // to 27 grid cells a gather sphere overlaps): the rendered radiance is 0.578 of the image
 // light's. With the fix: 1.001.
-TEST(Mirror, DISABLED_ImageOfSpotHasTheImageLightsRadiance) {
+TEST(Mirror, ImageOfSpotHasTheImageLightsRadiance) {
     ImageCheck c = check_spot_image(false);
     EXPECT_GT(c.checked, 200);
     EXPECT_NEAR(c.radiance_ratio, 1.0, 0.05);

@@ -1,0 +1,108 @@
+#pragma once
+// One pass's volume photons (scattering events in the medium) in a BVH built for the beam
+// radiance estimate: a camera segment finds every photon whose distance to it is below r
+// without marching. Median-split BVH over the photon positions, rebuilt each pass; node
+// boxes are tight and grown by r at query time (r changes every pass). Positions are kept
+// apart (SoA, leaf order) from what is read only on a hit.
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "core/vec3.h"
+
+namespace sl {
+struct VolumePhoton {
+    float x, y, z;
+    float dx, dy, dz;  // direction of travel when it scattered (before the new direction)
+    float r, g, b;     // flux of the emitted path after the event's weight (W)
+    uint32_t depth;    // scattering vertices from the light, this one included
+    double t_ns;       // arrival time at this point
+};
+
+struct VolumePhotonPayload {
+    Vec3 dir, flux;
+    uint32_t depth;
+    double t_ns;
+};
+
+class VolumePhotonMap {
+public:
+    // Concatenates the batches (in order) and builds the tree; the same input gives the same
+    // tree and leaf order for any thread count.
+    void build(std::span<const std::vector<VolumePhoton>* const> batches);
+
+    size_t size() const { return px_.size(); }
+    uint64_t bytes() const;
+    const VolumePhotonPayload& payload(uint32_t i) const { return payload_[i]; }
+
+    // Calls f(photon index, s) for every photon whose projection s onto o + s d lies in
+    // [0, length] and whose distance to that line is below sqrt(r2). d is unit length.
+    template <class F>
+    void for_each_along(Vec3 o, Vec3 d, float length, float r2, F&& f) const;
+
+    static constexpr uint32_t kLeaf = 8;  // <= 32: a leaf's hits fit a bit mask
+
+private:
+    struct Node {
+        float lo[3], hi[3];
+        uint32_t first_or_right;  // leaf: first photon; interior: right child (left is next)
+        uint32_t count;           // leaf: photons (> 0); interior: 0
+    };
+    void build_node(uint32_t node, uint32_t begin, uint32_t end);
+
+    std::vector<VolumePhoton> all_;   // concatenated batches
+    std::vector<uint32_t> order_;     // photon index in leaf order
+    std::vector<Node> nodes_;
+    std::vector<float> px_, py_, pz_;  // leaf order
+    std::vector<VolumePhotonPayload> payload_;
+};
+
+template <class F>
+void VolumePhotonMap::for_each_along(Vec3 o, Vec3 d, float length, float r2, F&& f) const {
+    if (nodes_.empty() || !(length > 0)) return;
+    const float r = std::sqrt(r2);
+    // A zero component becomes tiny: slab distances stay finite, never 0 * inf = NaN.
+    auto inv = [](float v) { return 1.0f / (v == 0 ? 1e-30f : v); };
+    const float ix = inv(d.x), iy = inv(d.y), iz = inv(d.z);
+    uint32_t stack[64];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        const Node& n = nodes_[stack[--top]];
+        float t0 = 0, t1 = length;
+        {
+            float a = (n.lo[0] - r - o.x) * ix, b = (n.hi[0] + r - o.x) * ix;
+            t0 = std::max(t0, std::min(a, b)); t1 = std::min(t1, std::max(a, b));
+            a = (n.lo[1] - r - o.y) * iy; b = (n.hi[1] + r - o.y) * iy;
+            t0 = std::max(t0, std::min(a, b)); t1 = std::min(t1, std::max(a, b));
+            a = (n.lo[2] - r - o.z) * iz; b = (n.hi[2] + r - o.z) * iz;
+            t0 = std::max(t0, std::min(a, b)); t1 = std::min(t1, std::max(a, b));
+        }
+        if (t0 > t1) continue;
+        if (n.count == 0) {
+            stack[top++] = n.first_or_right;
+            stack[top++] = static_cast<uint32_t>(&n - nodes_.data()) + 1;
+            continue;
+        }
+        // Branch-free over the leaf, then the few hits.
+        const uint32_t first = n.first_or_right;
+        uint32_t mask = 0;
+        for (uint32_t k = 0; k < n.count; ++k) {
+            const float vx = px_[first + k] - o.x, vy = py_[first + k] - o.y, vz = pz_[first + k] - o.z;
+            const float s = vx * d.x + vy * d.y + vz * d.z;
+            // The perpendicular offset itself, not |v|^2 - s^2: no cancellation far away.
+            const float qx = vx - d.x * s, qy = vy - d.y * s, qz = vz - d.z * s;
+            const bool in = (s >= 0) & (s <= length) & (qx * qx + qy * qy + qz * qz < r2);
+            mask |= static_cast<uint32_t>(in) << k;
+        }
+        while (mask) {
+            const uint32_t i = first + static_cast<uint32_t>(std::countr_zero(mask));
+            mask &= mask - 1;
+            f(i, (px_[i] - o.x) * d.x + (py_[i] - o.y) * d.y + (pz_[i] - o.z) * d.z);
+        }
+    }
+}
+
+}  // namespace sl
