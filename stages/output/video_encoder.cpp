@@ -85,6 +85,10 @@ AVPixelFormat configure_codec(const Container& c, const VideoSettings& vs, AVDic
     const std::string enc = c.encoder;
     if (enc == "libx264") {
         set_option(opts, "preset", "fast");  // encoding time stays small next to rendering
+        // A short look-ahead and two threads: x264's frame queue otherwise holds ~250 bytes
+        // per pixel (65 MiB at 512x512), more than a section's worth of buckets when K is large.
+        set_option(opts, "rc-lookahead", "10");
+        set_option(opts, "threads", "2");
         if (vs.lossless) {
             set_option(opts, "qp", "0");
             return AV_PIX_FMT_YUV444P;  // 4:2:0 would lose chroma
