@@ -56,29 +56,13 @@ void FrameAssembler::frame(int global_frame, std::vector<float>& rgb) {
         });
         next_slot_ = last_slot + 1;
     } else {
-        const int first_slot = std::max(1, last_slot - pulse_buckets_ + 1);
-        for_each_tile(pixels_, [&](size_t p0, size_t n) {
-            double sum[kTile * 3] = {};
-            for (int s = first_slot; s <= last_slot; ++s) {
-                const float* src = buffer_.slot(p0, s);
-                for (size_t i = 0; i < n * 3; ++i) sum[i] += src[i];
-            }
-            for (size_t i = 0; i < n * 3; ++i) rgb[p0 * 3 + i] = static_cast<float>(sum[i]) * scale_;
-        });
+        sum_slots(std::max(1, last_slot - pulse_buckets_ + 1), last_slot, rgb);
     }
     add_ambient(rgb);
 }
 
 void FrameAssembler::steady(std::vector<float>& rgb) const {
-    rgb.assign(pixels_ * 3, 0.0f);
-    for_each_tile(pixels_, [&](size_t p0, size_t n) {
-        double sum[kTile * 3] = {};
-        for (int s = 0; s < buffer_.slots; ++s) {
-            const float* src = buffer_.slot(p0, s);
-            for (size_t i = 0; i < n * 3; ++i) sum[i] += src[i];
-        }
-        for (size_t i = 0; i < n * 3; ++i) rgb[p0 * 3 + i] = static_cast<float>(sum[i]) * scale_;
-    });
+    sum_slots(0, buffer_.slots - 1, rgb);
     add_ambient(rgb);
 }
 
