@@ -15,6 +15,11 @@ inline constexpr int kMaxThreads = 4096;
 inline constexpr double kMaxFps = 1000;
 // Every length, in meters after units: keeps squared lengths and cross products finite in float.
 inline constexpr double kMaxLength = 1e9;
+// Light power (W) and radiance: far beyond any real light, far below float overflow once
+// multiplied by areas, albedos and photon weights.
+inline constexpr double kMaxEmission = 1e30;
+// A spot narrower than this is a laser: its 1 - cos(cone) would vanish in float.
+inline constexpr double kMinSpotConeDeg = 0.1;
 // Relative tolerance when checking that a pulse width is a whole number of frames.
 inline constexpr double kPulseTolerance = 1e-6;
 

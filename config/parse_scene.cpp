@@ -135,7 +135,7 @@ private:
 
     // Power, radiance, ambient: non-negative RGB.
     static Vec3 color(const JsonObject& o, std::string_view key) {
-        return to_vec3(o, key, o.triple(key, Range::non_negative()));
+        return to_vec3(o, key, o.triple(key, Range::closed(0, limits::kMaxEmission)));
     }
 
     // A quad spans a parallelogram; its edges must be non-zero and not parallel.
@@ -288,7 +288,7 @@ private:
                 l.expect_keys({"type", "position", "direction", "cone_deg", "power"});
                 d.position = point(l, "position");
                 d.direction = direction(l, "direction");
-                d.cone_deg = number_f(l, "cone_deg", Range{0, 180, true, false}, d.cone_deg);
+                d.cone_deg = number_f(l, "cone_deg", Range{limits::kMinSpotConeDeg, 180, false, false}, d.cone_deg);
                 d.power = color(l, "power");
                 break;
             case LightType::Laser:

@@ -18,8 +18,11 @@ LightSet::LightSet(const SceneDesc& scene) {
             break;
         case LightType::Spot: {
             l.power = d.power;
-            l.cos_cone = std::cos(d.cone_deg * kPi / 180.0f);
-            l.intensity = d.power / (2 * kPi * (1 - l.cos_cone));
+            // 1 - cos(c) = 2 sin^2(c/2), in double: exact for narrow cones too.
+            double half = 0.5 * d.cone_deg * 3.14159265358979323846 / 180.0;
+            double one_minus_cos = 2 * std::sin(half) * std::sin(half);
+            l.cos_cone = static_cast<float>(1 - one_minus_cos);
+            l.intensity = d.power * static_cast<float>(1 / (2 * 3.14159265358979323846 * one_minus_cos));
             l.desc.direction = normalize(d.direction);
             break;
         }

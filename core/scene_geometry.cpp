@@ -22,6 +22,16 @@ SceneGeometry::SceneGeometry(const SceneDesc& desc) {
     if (!device_) throw RuntimeFailure("cannot create the Embree device (error " +
                                        std::to_string(rtcGetDeviceError(nullptr)) + ")");
     rtcSetDeviceErrorFunction(device_, embree_error, nullptr);
+    try {
+        build(desc);
+    } catch (...) {  // the destructor does not run for a half-built object: release here
+        if (scene_) rtcReleaseScene(scene_);
+        rtcReleaseDevice(device_);
+        throw;
+    }
+}
+
+void SceneGeometry::build(const SceneDesc& desc) {
     scene_ = rtcNewScene(device_);
     rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
     rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);

@@ -36,6 +36,7 @@ public:
     size_t triangle_count() const { return triangles_; }
 
 private:
+    void build(const SceneDesc& desc);
     void add_triangles(const std::vector<Vec3>& v, const std::vector<uint32_t>& idx, int material, int light);
     void add_sphere(Vec3 center, float radius, int material);
 

@@ -1,0 +1,146 @@
+#include "runs.h"
+
+#include <sys/resource.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+
+#include "core/rng.h"
+#include "core/sampling.h"
+#include "stages/render/frame_assembly.h"
+#include "stages/render/photon_map.h"
+#include "stages/render/section_layout.h"
+#include "stages/render/section_renderer.h"
+
+namespace report {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+void keep_best(RayRate& best, double rays, double wall, double cpu) {
+    best.per_wall_s = std::max(best.per_wall_s, rays / wall);
+    if (cpu > 0) best.per_cpu_s = std::max(best.per_cpu_s, rays / cpu);
+}
+
+}  // namespace
+
+double cpu_seconds() {
+    rusage u{};
+    getrusage(RUSAGE_SELF, &u);
+    return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+           1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
+const char* name(Strategy s) { return s == Strategy::Single ? "single" : "frame-by-frame"; }
+
+RunResult render(const sl::RenderContext& ctx, Strategy strategy, int passes, int64_t photons_per_pass,
+                 bool keep_frames) {
+    RunResult out;
+    out.passes = passes;
+    out.photons_per_pass = photons_per_pass;
+    const int frames = ctx.timeline.frames;
+    const int sections = strategy == Strategy::Single ? 1 : frames;
+    const sl::EmissionMode mode = ctx.scene.emission.mode;
+    sl::SectionCounters counters;
+    Image rgb;
+    auto t0 = Clock::now();
+    const double c0 = cpu_seconds();
+    for (int k = 0; k < sections; ++k) {
+        auto ts = Clock::now();
+        const double cs = cpu_seconds();
+        sl::SectionLayout layout = sl::make_section(ctx.timeline, ctx.pulse_buckets, sections, k);
+        // As the pipeline's layout_for(): the baseline renders every frame with full paths.
+        if (strategy == Strategy::FrameByFrame) layout.full_paths = true;
+        sl::SectionRun run = sl::render_section(ctx, layout, passes, photons_per_pass, counters);
+        out.camera_s += run.times.camera;
+        out.photons_s += run.times.photons;
+        out.gather_s += run.times.gather;
+        auto ta = Clock::now();
+        sl::FrameAssembler assembler(*run.buffer, mode, ctx.pulse_buckets);
+        for (int f = layout.first_frame; f < layout.end_frame; ++f) {
+            assembler.frame(f, rgb);
+            if (keep_frames) out.frames.push_back(rgb);
+        }
+        if (k == sections - 1) assembler.steady(out.steady);
+        out.assembly_s += since(ta);
+        out.section_s.push_back(since(ts));
+        out.section_cpu_s.push_back(cpu_seconds() - cs);
+    }
+    out.wall_s = since(t0);
+    out.cpu_s = cpu_seconds() - c0;
+    out.camera_rays = counters.camera.rays.load();
+    out.photon_rays = counters.photons.rays.load();
+    out.photons = counters.photons.photons.load();
+    return out;
+}
+
+RayRate bare_embree_rays_per_s(const sl::RenderContext& ctx, size_t rays, int rounds) {
+    const sl::Vec3 lo = ctx.geometry.bounds_min(), hi = ctx.geometry.bounds_max();
+    const size_t per_batch = 4096, batches = std::max<size_t>(1, rays / per_batch);
+    RayRate best;
+    for (int r = 0; r < rounds; ++r) {
+        std::atomic<uint64_t> hits{0};
+        auto t0 = Clock::now();
+        const double c0 = cpu_seconds();
+        tbb::parallel_for(size_t(0), batches, [&](size_t b) {
+            sl::Rng rng(7, 3, static_cast<uint64_t>(r), b);
+            uint64_t h = 0;
+            for (size_t i = 0; i < per_batch; ++i) {
+                sl::Vec3 o{lo.x + (hi.x - lo.x) * rng.uniform(), lo.y + (hi.y - lo.y) * rng.uniform(),
+                           lo.z + (hi.z - lo.z) * rng.uniform()};
+                sl::Vec3 d = sl::sample_uniform_sphere(rng.uniform(), rng.uniform());
+                sl::SurfaceHit hit;
+                h += ctx.geometry.intersect(o, d, 0, 1e30f, hit);
+            }
+            hits += h;
+        });
+        double secs = since(t0), cpu = cpu_seconds() - c0;
+        if (hits.load() == 0) return {};  // nothing to hit: no meaningful ceiling
+        keep_best(best, static_cast<double>(batches * per_batch), secs, cpu);
+    }
+    return best;
+}
+
+RayRate photon_pass_rays_per_s(const sl::RenderContext& ctx, int passes, int64_t photons_per_pass, int rounds) {
+    sl::SectionLayout layout = sl::make_section(ctx.timeline, ctx.pulse_buckets, 1, 0);
+    sl::PhotonMap map;
+    RayRate best;
+    int pass = 0;
+    for (int r = 0; r < rounds; ++r) {
+        sl::PhotonTraceCounters counters;
+        auto t0 = Clock::now();
+        const double c0 = cpu_seconds();
+        for (int i = 0; i < passes; ++i)
+            map.build(ctx, layout, pass++, photons_per_pass, ctx.initial_radius, counters);
+        double secs = since(t0), cpu = cpu_seconds() - c0;
+        keep_best(best, static_cast<double>(counters.rays.load()), secs, cpu);
+    }
+    return best;
+}
+
+double rmse(const Image& a, const Image& b) {
+    double s = 0;
+    for (size_t i = 0; i < a.size(); ++i) {
+        double d = static_cast<double>(a[i]) - b[i];
+        s += d * d;
+    }
+    return std::sqrt(s / static_cast<double>(std::max<size_t>(a.size(), 1)));
+}
+
+double mean(const Image& a) {
+    double s = 0;
+    for (float v : a) s += v;
+    return s / static_cast<double>(std::max<size_t>(a.size(), 1));
+}
+
+size_t count_non_finite(const Image& a) {
+    size_t n = 0;
+    for (float v : a) n += !std::isfinite(v);
+    return n;
+}
+
+}  // namespace report

@@ -1,0 +1,177 @@
+#pragma once
+// Shared pieces of the hard-case tests: an in-process render that also inspects the raw
+// section buffers (every accumulator slot, radius and photon count), NaN/Inf counting, and
+// scenes built in code or as JSON text.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "config/parse_scene.h"
+#include "config/scene_desc.h"
+#include "stages/render/frame_assembly.h"
+#include "stages/render/render_context.h"
+#include "stages/render/section_renderer.h"
+
+namespace sl::hard {
+
+using Image = std::vector<float>;
+
+inline size_t count_non_finite(const std::vector<float>& v) {
+    size_t n = 0;
+    for (float x : v) n += !std::isfinite(x);
+    return n;
+}
+inline size_t count_non_finite(const std::vector<double>& v) {
+    size_t n = 0;
+    for (double x : v) n += !std::isfinite(x);
+    return n;
+}
+
+struct Rendered {
+    std::vector<Image> frames;
+    Image steady;
+    int width = 0, height = 0;
+    // Raw state of every section, scanned before it was freed.
+    size_t buffer_non_finite = 0;   // accumulators, ambient, radius^2, photon counts
+    double min_radius2 = std::numeric_limits<double>::infinity(), max_radius2 = 0;
+    double min_photon_count = std::numeric_limits<double>::infinity(), max_photon_count = 0;
+    std::vector<double> radius2, photon_count;  // of the last section
+    double initial_radius = 0;
+
+    size_t image_non_finite() const {
+        size_t n = count_non_finite(steady);
+        for (const Image& f : frames) n += count_non_finite(f);
+        return n;
+    }
+    const float* px(const Image& img, int x, int y) const { return &img[(static_cast<size_t>(y) * width + x) * 3]; }
+};
+
+// Renders every frame and the steady image with `sections` sections (frame_by_frame: one per
+// frame, each with full paths, as `--strategy frame-by-frame`).
+inline Rendered render(const SceneDesc& scene, int sections = 1, bool frame_by_frame = false) {
+    RenderContext ctx(scene);
+    Rendered out;
+    out.width = ctx.width;
+    out.height = ctx.height;
+    out.initial_radius = ctx.initial_radius;
+    if (frame_by_frame) sections = ctx.timeline.frames;
+    SectionCounters counters;
+    for (int k = 0; k < sections; ++k) {
+        SectionLayout layout = make_section(ctx.timeline, ctx.pulse_buckets, sections, k);
+        if (frame_by_frame) layout.full_paths = true;
+        SectionRun run = render_section(ctx, layout, scene.render.passes, scene.render.photons_per_pass, counters);
+        const SectionBuffer& b = *run.buffer;
+        out.buffer_non_finite += count_non_finite(b.accum) + count_non_finite(b.ambient) +
+                                 count_non_finite(b.radius2) + count_non_finite(b.photon_count);
+        for (double r2 : b.radius2) {
+            out.min_radius2 = std::min(out.min_radius2, r2);
+            out.max_radius2 = std::max(out.max_radius2, r2);
+        }
+        for (double n : b.photon_count) {
+            out.min_photon_count = std::min(out.min_photon_count, n);
+            out.max_photon_count = std::max(out.max_photon_count, n);
+        }
+        out.radius2 = b.radius2;
+        out.photon_count = b.photon_count;
+        FrameAssembler a(b, scene.emission.mode, ctx.pulse_buckets);
+        for (int f = layout.first_frame; f < layout.end_frame; ++f) {
+            out.frames.emplace_back();
+            a.frame(f, out.frames.back());
+        }
+        if (k == sections - 1) a.steady(out.steady);
+    }
+    return out;
+}
+
+inline double rmse(const Image& a, const Image& b) {
+    double s = 0;
+    for (size_t i = 0; i < a.size(); ++i) s += (double(a[i]) - b[i]) * (double(a[i]) - b[i]);
+    return std::sqrt(s / static_cast<double>(a.size()));
+}
+
+inline double mean(const Image& a) {
+    double s = 0;
+    for (float v : a) s += v;
+    return s / static_cast<double>(a.size());
+}
+
+inline MaterialDesc diffuse(const char* name, float albedo) {
+    MaterialDesc m;
+    m.name = name;
+    m.albedo = Vec3(albedo);
+    return m;
+}
+
+inline ShapeDesc quad(Vec3 corner, Vec3 e1, Vec3 e2, int material = 0) {
+    ShapeDesc q;
+    q.type = ShapeType::Quad;
+    q.corner = corner;
+    q.edge1 = e1;
+    q.edge2 = e2;
+    q.material = material;
+    return q;
+}
+
+inline LightDesc point_light(Vec3 p, float power) {
+    LightDesc l;
+    l.type = LightType::Point;
+    l.position = p;
+    l.power = Vec3(power);
+    return l;
+}
+
+// A closed 2 m box with a quad light under its ceiling, seen from inside.
+inline SceneDesc closed_box(int res, int passes, int64_t photons, int max_depth = 8) {
+    SceneDesc s;
+    s.source = "<hard box>";
+    s.camera.position = {0, 1, 0.99f};
+    s.camera.look_at = {0, 1, 0};
+    s.camera.vfov_deg = 90;
+    s.camera.width = s.camera.height = res;
+    s.materials = {diffuse("white", 0.7f)};
+    s.shapes = {quad({-1, 0, 1}, {2, 0, 0}, {0, 0, -2}), quad({-1, 2, -1}, {2, 0, 0}, {0, 0, 2}),
+                quad({-1, 0, -1}, {2, 0, 0}, {0, 2, 0}), quad({-1, 0, 1}, {2, 0, 0}, {0, 2, 0}),
+                quad({-1, 0, 1}, {0, 0, -2}, {0, 2, 0}), quad({1, 0, -1}, {0, 0, 2}, {0, 2, 0})};
+    LightDesc l;
+    l.type = LightType::Quad;
+    l.corner = {-0.25f, 1.98f, -0.2f};
+    l.edge1 = {0.5f, 0, 0};
+    l.edge2 = {0, 0, 0.4f};
+    l.radiance = {17, 12, 4};
+    s.lights.push_back(l);
+    s.time = {0, 24, 12, 24};
+    s.render.passes = passes;
+    s.render.photons_per_pass = photons;
+    s.render.max_depth = max_depth;
+    return s;
+}
+
+// A fresh temporary directory, removed with its contents.
+class TempDir {
+public:
+    TempDir() {
+        std::string t = (std::filesystem::temp_directory_path() / "sl_hard_XXXXXX").string();
+        if (!::mkdtemp(t.data())) throw std::runtime_error("mkdtemp failed");
+        path_ = t;
+    }
+    ~TempDir() {
+        std::error_code ec;
+        std::filesystem::remove_all(path_, ec);
+    }
+    TempDir(const TempDir&) = delete;
+    TempDir& operator=(const TempDir&) = delete;
+    std::string file(const std::string& name) const { return (path_ / name).string(); }
+    std::string path() const { return path_.string(); }
+
+private:
+    std::filesystem::path path_;
+};
+
+}  // namespace sl::hard
