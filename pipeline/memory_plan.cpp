@@ -37,14 +37,15 @@ uint64_t section_buffer_bytes(const SceneDesc& scene, int sections) {
 
 uint64_t fixed_overhead_bytes(const SceneDesc& scene) {
     uint64_t pixels = pixel_count(scene);
-    // Visible points: 9 floats, a double, a depth and a flag per pixel.
-    uint64_t vps = pixels * (9 * 4 + 8 + 2 + 1);
+    // Visible points: 6 floats, a packed normal, a depth and a flag per pixel (+ a double
+    // with camera_tof).
+    uint64_t vps = pixels * (6 * 4 + sizeof(OctNormal) + 2 + 1 + (scene.render.camera_tof ? 8 : 0));
     // Photon map: a closed white room stores about albedo/(1-albedo) ~ 2.5 records per path;
-    // budget 4 (or max_depth - 1) records, each in a batch and sorted, with its position and
-    // slot, plus a hash table of twice the records.
+    // budget 4 (or max_depth - 1) records, each in a batch and sorted, with its staged slot
+    // and index, plus a hash table of twice the records.
     uint64_t per_path = static_cast<uint64_t>(std::clamp(scene.render.max_depth - 1, 1, 4));
     uint64_t records = static_cast<uint64_t>(scene.render.photons_per_pass) * per_path;
-    uint64_t photons = records * (2 * sizeof(PhotonRecord) + 3 * 4 + 4) + 4 * records * 2 * 4;
+    uint64_t photons = records * (2 * sizeof(PhotonRecord) + 2 * 4) + 4 * records * 2 * 4;
     // Frames on their way out: a running sum (double), three float frames, an 8-bit frame, and
     // the encoder's own look-ahead (x264 keeps some tens of frames in 4:2:0).
     uint64_t frames = pixels * (3 * 8 + 3 * 3 * 4 + 3);

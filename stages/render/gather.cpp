@@ -25,15 +25,19 @@ void gather_photons(const RenderContext& ctx, const VisiblePoints& vps, const Ph
                 double& r2 = buffer.radius2[p];
                 if (vps.valid[p]) {
                     const float px = vps.px[p], py = vps.py[p], pz = vps.pz[p];
-                    const float nx = vps.nx[p], ny = vps.ny[p], nz = vps.nz[p];
+                    const Vec3 n = decode_normal(vps.normal[p]);
+                    const float nx = n.x, ny = n.y, nz = n.z;
                     const uint32_t depth_left = vps.depth_left[p];
-                    const double back_ns = vps.camera_ns[p];
+                    const double back_ns = vps.camera_ns.empty() ? 0.0 : vps.camera_ns[p];
                     // This pass's estimate: f * flux / (pi R^2 * photons emitted this pass).
                     const float k = static_cast<float>(inv_count / (kPi * r2));
                     const float wr = vps.wr[p] * k, wg = vps.wg[p] * k, wb = vps.wb[p] * k;
                     uint32_t found = 0;
                     photons.for_each_near(px, py, pz, static_cast<float>(r2), [&](const PhotonRecord& ph) {
-                        if (ph.nx * nx + ph.ny * ny + ph.nz * nz < kSameSurface) return;
+                        // cos(angle) < kSameSurface, without normalising the decoded normal.
+                        const Vec3 pn = decode_normal_unnormalized(ph.normal);
+                        const float c = pn.x * nx + pn.y * ny + pn.z * nz;
+                        if (c <= 0 || c * c < kSameSurface * kSameSurface * dot(pn, pn)) return;
                         if (ph.depth > depth_left) return;
                         ++found;
                         int s = layout.slot_of_bucket(tl.bucket(ph.t_ns + back_ns));

@@ -70,8 +70,8 @@ struct PhotonPath {
             Vec3 nf = dot(d, hit.normal) < 0 ? hit.normal : -hit.normal;
             if (m.type == MaterialType::Diffuse) {
                 if (depth >= 2 || e.direct_by_photons)
-                    out.push_back({hit.position.x, hit.position.y, hit.position.z, nf.x, nf.y, nf.z,
-                                   flux.x, flux.y, flux.z, static_cast<uint32_t>(depth), t});
+                    out.push_back({hit.position.x, hit.position.y, hit.position.z, flux.x, flux.y, flux.z,
+                                   encode_normal(nf), static_cast<uint32_t>(depth), t});
                 // Russian roulette from the third vertex on: survive with the albedo's maximum.
                 float q = depth >= 3 ? std::min(1.0f, max_component(m.albedo)) : 1.0f;
                 if (q <= 0 || (q < 1 && rng.uniform() >= q)) return;
@@ -95,10 +95,12 @@ struct PhotonPath {
 }  // namespace
 
 uint64_t PhotonMap::bytes() const {
-    uint64_t b = (staged_.capacity() + sorted_.capacity()) * sizeof(PhotonRecord) +
-                 (staged_slot_.capacity() + cell_start_.capacity() + partition_start_.capacity()) * sizeof(uint32_t);
+    uint64_t b = sorted_.capacity() * sizeof(PhotonRecord) +
+                 (staged_slot_.capacity() + staged_index_.capacity() + cell_start_.capacity() +
+                  partition_start_.capacity()) * sizeof(uint32_t);
     for (const Batch& v : batches_)
-        b += v.records.capacity() * sizeof(PhotonRecord) + (v.hashes.capacity() + v.partitions.capacity()) * 4 +
+        b += v.records.capacity() * sizeof(PhotonRecord) +
+             (v.partition_begin.capacity() + v.partition_end.capacity()) * 4 +
              v.volume.capacity() * sizeof(VolumePhoton);
     return b;
 }
@@ -118,11 +120,6 @@ void PhotonMap::build(const RenderContext& ctx, const SectionLayout& layout, int
         PhotonPath path{ctx, layout, batch.records, medium, volume ? &batch.volume : nullptr};
         int64_t n = std::min<int64_t>(kBatch, count - static_cast<int64_t>(b) * kBatch);
         for (int64_t i = 0; i < n; ++i) path.trace(rng);
-        batch.hashes.resize(batch.records.size());
-        for (size_t i = 0; i < batch.records.size(); ++i) {
-            const PhotonRecord& p = batch.records[i];
-            batch.hashes[i] = hash_cell(cell(p.x), cell(p.y), cell(p.z));
-        }
         counters.photons.fetch_add(static_cast<uint64_t>(n), std::memory_order_relaxed);
         counters.rays.fetch_add(path.rays, std::memory_order_relaxed);
     });
@@ -141,7 +138,8 @@ void PhotonMap::build(const RenderContext& ctx, const SectionLayout& layout, int
 
 // A stable two-step counting sort by hash slot that runs in parallel and gives the same order
 // for any thread count: records are first grouped by the slot's top bits (each batch writes
-// its own ranges, in batch order), then each group is counting-sorted on its own.
+// its own ranges, in batch order), then each group is counting-sorted on its own. Only slots
+// and batch indices are staged, so a record is copied once, from its batch into the grid.
 void PhotonMap::sort_into_grid(size_t total) {
     uint32_t table = 1u << 10;
     while (table < 2 * total && table < (1u << 30)) table <<= 1;
@@ -151,31 +149,30 @@ void PhotonMap::sort_into_grid(size_t total) {
 
     tbb::parallel_for(size_t(0), batches_.size(), [&](size_t b) {
         Batch& batch = batches_[b];
-        batch.partitions.assign(parts, 0);
-        for (uint32_t& h : batch.hashes) {
-            h &= mask_;
-            ++batch.partitions[h >> shift];
-        }
+        batch.partition_begin.assign(parts, 0);
+        for (const PhotonRecord& p : batch.records) ++batch.partition_begin[slot_of(p) >> shift];
     });
     partition_start_.assign(parts + 1, 0);
     uint32_t offset = 0;
     for (size_t part = 0; part < parts; ++part) {
         partition_start_[part] = offset;
         for (Batch& batch : batches_) {
-            uint32_t n = batch.partitions[part];
-            batch.partitions[part] = offset;  // from here on: this batch's write cursor
+            uint32_t n = batch.partition_begin[part];
+            batch.partition_begin[part] = offset;
             offset += n;
         }
     }
     partition_start_[parts] = offset;
-    staged_.resize(total);
     staged_slot_.resize(total);
+    staged_index_.resize(total);
     tbb::parallel_for(size_t(0), batches_.size(), [&](size_t b) {
         Batch& batch = batches_[b];
+        batch.partition_end = batch.partition_begin;  // write cursors, then the ends
         for (size_t i = 0; i < batch.records.size(); ++i) {
-            uint32_t dst = batch.partitions[batch.hashes[i] >> shift]++;
-            staged_[dst] = batch.records[i];
-            staged_slot_[dst] = batch.hashes[i];
+            const uint32_t slot = slot_of(batch.records[i]);
+            const uint32_t dst = batch.partition_end[slot >> shift]++;
+            staged_slot_[dst] = slot;
+            staged_index_[dst] = static_cast<uint32_t>(i);
         }
     });
     sorted_.resize(total);
@@ -193,7 +190,11 @@ void PhotonMap::sort_into_grid(size_t total) {
             run += n;
         }
         // Fill with start[] as the cursor; afterwards start[s] is slot s's end, so shift it back.
-        for (uint32_t i = lo; i < hi; ++i) sorted_[start[staged_slot_[i] - first_slot]++] = staged_[i];
+        // The partition's staged entries are the batches' ranges, one after another.
+        for (const Batch& batch : batches_) {
+            for (uint32_t i = batch.partition_begin[part], e = batch.partition_end[part]; i < e; ++i)
+                sorted_[start[staged_slot_[i] - first_slot]++] = batch.records[staged_index_[i]];
+        }
         for (uint32_t s = slots - 1; s > 0; --s) start[s] = start[s - 1];
         start[0] = lo;
     });

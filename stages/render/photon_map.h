@@ -7,19 +7,23 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/oct_normal.h"
 #include "stages/render/render_context.h"
 #include "stages/render/section_layout.h"
 #include "stages/render/volume_photons.h"
 
 namespace sl {
 
+// 40 bytes: a pass holds every record twice (as traced, and sorted into the grid), and that
+// memory does not shrink with the number of sections.
 struct PhotonRecord {
     float x, y, z;
-    float nx, ny, nz;  // surface normal facing the side the photon arrived from
-    float r, g, b;     // flux of the emitted path (W), before dividing by the photon count
-    uint32_t depth;    // scattering vertices from the light, this one included
-    double t_ns;       // arrival time at this point
+    float r, g, b;      // flux of the emitted path (W), before dividing by the photon count
+    OctNormal normal;   // surface normal facing the side the photon arrived from
+    uint32_t depth;     // scattering vertices from the light, this one included
+    double t_ns;        // arrival time at this point
 };
+static_assert(sizeof(PhotonRecord) == 40);
 
 struct PhotonTraceCounters {
     std::atomic<uint64_t> photons{0}, rays{0}, stored{0}, stored_volume{0};
@@ -54,13 +58,15 @@ private:
 
     struct Batch {
         std::vector<PhotonRecord> records;
-        std::vector<uint32_t> hashes;      // each record's cell hash (before masking)
-        std::vector<uint32_t> partitions;  // records per partition, then write cursors
+        std::vector<uint32_t> partition_begin;  // where this batch's records of each partition
+        std::vector<uint32_t> partition_end;    // go in the staged arrays
         std::vector<VolumePhoton> volume;  // medium scattering events (with a medium only)
     };
-    std::vector<Batch> batches_;        // kept between passes: no reallocation per photon
-    std::vector<PhotonRecord> staged_;  // records grouped by partition (batch order kept)
-    std::vector<uint32_t> staged_slot_;
+    uint32_t slot_of(const PhotonRecord& p) const { return hash_cell(cell(p.x), cell(p.y), cell(p.z)) & mask_; }
+
+    std::vector<Batch> batches_;         // kept between passes: no reallocation per photon
+    std::vector<uint32_t> staged_slot_;  // per record, grouped by partition (batch order kept):
+    std::vector<uint32_t> staged_index_;  // its hash slot and its index in its batch
     std::vector<PhotonRecord> sorted_;  // records grouped by hash slot: the grid's cells
     std::vector<uint32_t> cell_start_;  // hash slot -> first record (size table + 1)
     std::vector<uint32_t> partition_start_;

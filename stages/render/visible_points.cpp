@@ -8,9 +8,10 @@
 
 namespace sl {
 
-void VisiblePoints::resize(size_t n) {
-    for (auto* v : {&px, &py, &pz, &nx, &ny, &nz, &wr, &wg, &wb}) v->assign(n, 0.0f);
-    camera_ns.assign(n, 0.0);
+void VisiblePoints::resize(size_t n, bool camera_time) {
+    for (auto* v : {&px, &py, &pz, &wr, &wg, &wb}) v->assign(n, 0.0f);
+    normal.assign(n, OctNormal{});
+    camera_ns.assign(camera_time ? n : 0, 0.0);
     depth_left.assign(n, 0);
     valid.assign(n, 0);
 }
@@ -107,9 +108,9 @@ struct PixelTracer {
         const double back_ns = tof ? leg_ns : 0.0;
         Vec3 f = albedo_beta * (1.0f / kPi);  // Lambertian BRDF times camera throughput
         vps.px[pixel] = p.x; vps.py[pixel] = p.y; vps.pz[pixel] = p.z;
-        vps.nx[pixel] = nf.x; vps.ny[pixel] = nf.y; vps.nz[pixel] = nf.z;
+        vps.normal[pixel] = encode_normal(nf);
         vps.wr[pixel] = f.x; vps.wg[pixel] = f.y; vps.wb[pixel] = f.z;
-        vps.camera_ns[pixel] = back_ns;
+        if (tof) vps.camera_ns[pixel] = back_ns;
         vps.depth_left[pixel] = static_cast<uint16_t>(sc.render.max_depth - specular);
         vps.valid[pixel] = 1;
         if (!buffer.ambient.empty()) {
@@ -137,7 +138,7 @@ struct PixelTracer {
 
 void camera_pass(const RenderContext& ctx, int pass, VisiblePoints& vps, SectionBuffer& buffer,
                  CameraPassCounters& counters, CameraSegments* segments) {
-    if (vps.valid.size() != ctx.pixels()) vps.resize(ctx.pixels());
+    if (vps.valid.size() != ctx.pixels()) vps.resize(ctx.pixels(), ctx.scene.render.camera_tof);
     const HomogeneousMedium* medium = ctx.medium ? &*ctx.medium : nullptr;
     if (!medium) segments = nullptr;
     if (segments && segments->pixels() != ctx.pixels()) segments->resize(ctx.pixels());

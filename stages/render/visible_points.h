@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/oct_normal.h"
 #include "stages/render/camera_segments.h"
 #include "stages/render/render_context.h"
 #include "stages/render/section_buffer.h"
@@ -14,12 +15,13 @@
 namespace sl {
 
 // Structure of arrays, one entry per pixel (valid[p] == 0 where the path found no diffuse point).
+// 31 bytes a pixel (39 with camera_tof): they live through every section.
 struct VisiblePoints {
-    void resize(size_t pixels);
+    void resize(size_t pixels, bool camera_time);
     std::vector<float> px, py, pz;     // position
-    std::vector<float> nx, ny, nz;     // unit normal facing the camera path
+    std::vector<OctNormal> normal;     // unit normal facing the camera path
     std::vector<float> wr, wg, wb;     // camera throughput x BRDF (albedo / pi)
-    std::vector<double> camera_ns;     // time back to the camera (used with camera_tof)
+    std::vector<double> camera_ns;     // time back to the camera (camera_tof only; else empty)
     std::vector<uint16_t> depth_left;  // photon vertices this point may still accept
     std::vector<uint8_t> valid;
 };
