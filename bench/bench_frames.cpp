@@ -48,7 +48,7 @@ void BM_Render(benchmark::State& state) {
     for (auto _ : state) {
         auto t0 = Clock::now();
         sl::SectionCounters counters;
-        sl::SectionLayout layout = sl::make_section(ctx.timeline, 1, 1, 0);
+        sl::SectionLayout layout = sl::make_section(ctx.timeline, ctx.scene.emission.mode, 1, 1, 0);
         sl::SectionRun run = sl::render_section(ctx, layout, scene.render.passes, scene.render.photons_per_pass, counters);
         auto ta = Clock::now();
         sl::FrameAssembler assembler(*run.buffer, sl::EmissionMode::Constant, 1);
@@ -70,7 +70,7 @@ void BM_Render(benchmark::State& state) {
 void BM_PhotonPass(benchmark::State& state) {
     sl::SceneDesc scene = cornell(1);
     sl::RenderContext ctx(scene);
-    sl::SectionLayout layout = sl::make_section(ctx.timeline, 1, 1, 0);
+    sl::SectionLayout layout = sl::make_section(ctx.timeline, ctx.scene.emission.mode, 1, 1, 0);
     sl::PhotonMap map;
     int pass = 0;
     for (auto _ : state) {

@@ -52,7 +52,7 @@ void BM_Pass(benchmark::State& state) {
     sl::RenderContext ctx(s);
     for (auto _ : state) {
         sl::SectionCounters counters;
-        sl::SectionLayout layout = sl::make_section(ctx.timeline, 1, 1, 0);
+        sl::SectionLayout layout = sl::make_section(ctx.timeline, ctx.scene.emission.mode, 1, 1, 0);
         auto t0 = Clock::now();
         std::clock_t c0 = std::clock();
         sl::SectionRun run = sl::render_section(ctx, layout, s.render.passes, s.render.photons_per_pass, counters);
@@ -66,12 +66,12 @@ void BM_Pass(benchmark::State& state) {
         b.photons_s = run.times.photons / n;
         b.gather_s = run.times.gather / n;
         b.beam_s = run.times.volume / n;
-        double segs = static_cast<double>(counters.beam_segments.load());
+        double segs = static_cast<double>(counters.camera.beam_segments.load());
         b.segments_per_pass = segs / n;
         b.beam_ns_per_segment = segs > 0 ? run.times.volume * 1e9 / segs : 0;
         b.pass_cpu_s = cpu / n;
         b.beam_cpu_ns_per_segment = segs > 0 ? run.times.volume_cpu * 1e9 / segs : 0;
-        b.hits_per_segment = segs > 0 ? counters.beam_hits.load() / segs : 0;
+        b.hits_per_segment = segs > 0 ? counters.camera.beam_hits.load() / segs : 0;
         // The best of each number on its own, over the rounds.
         Best& best = g_best[{frames, medium}];
         auto keep = [](double& kept, double v) { kept = kept == 0 ? v : std::min(kept, v); };

@@ -7,9 +7,9 @@
 #include <unistd.h>
 
 #include "core/errors.h"
-#include "stages/render/camera_segments.h"
 #include "stages/render/photon_map.h"
 #include "stages/render/section_buffer.h"
+#include "stages/render/section_layout.h"
 
 namespace sl {
 
@@ -29,17 +29,13 @@ static size_t pixel_count(const SceneDesc& s) {
 }
 
 uint64_t section_buffer_bytes(const SceneDesc& scene, int sections) {
-    int frames = scene.time.frames;
-    int largest = (frames + sections - 1) / sections;
-    int slots = largest + pulse_bucket_count(scene) - 1 + 2;
+    const Timeline tl{scene.time.start_ns, scene.time.end_ns, scene.time.frames};
+    const int slots = max_section_slots(tl, scene.emission.mode, pulse_bucket_count(scene), sections);
     return SectionBuffer::bytes_needed(pixel_count(scene), slots, !is_black(scene.render.ambient));
 }
 
 uint64_t fixed_overhead_bytes(const SceneDesc& scene) {
     uint64_t pixels = pixel_count(scene);
-    // Visible points: 6 floats, a packed normal, a depth and a flag per pixel (+ a double
-    // with camera_tof).
-    uint64_t vps = pixels * (6 * 4 + sizeof(OctNormal) + 2 + 1 + (scene.render.camera_tof ? 8 : 0));
     // Photon map: a closed white room stores about albedo/(1-albedo) ~ 2.5 records per path;
     // budget 4 (or max_depth - 1) records, each in a batch and sorted, with its staged slot
     // and index, plus a hash table of twice the records.
@@ -51,19 +47,18 @@ uint64_t fixed_overhead_bytes(const SceneDesc& scene) {
     uint64_t frames = pixels * (3 * 8 + 3 * 3 * 4 + 3);
     // A medium (with some extinction): volume photons, budgeted like surface records (up to 4
     // events a path), each in its batch, concatenated, in leaf order (position + payload), with
-    // its BVH index and a node per 4; and each pixel's camera segments.
+    // its BVH index and a node per 4.
     uint64_t volume = 0;
     const MediumDesc& m = scene.medium;
     if (m.present && max_component(m.sigma_a + m.sigma_s) > 0) {
         uint64_t events = static_cast<uint64_t>(scene.render.photons_per_pass) *
                           static_cast<uint64_t>(std::clamp(scene.render.max_depth, 1, 4));
-        volume = events * (2 * sizeof(VolumePhoton) + 4 + 3 * 4 + 40 + 32 / 4) +
-                 pixels * (CameraSegments::kPerPixel * sizeof(CameraSegment) + 1);
+        volume = events * (2 * sizeof(VolumePhoton) + 4 + 3 * 4 + 40 + 32 / 4);
     }
     // The encoder (x264 keeps a look-ahead of frames; measured ~260 bytes per pixel at 512x512)
     // and the process as it stands (libraries, the scene's BVH): measured, not guessed.
     uint64_t encoder = pixels * 260;
-    return vps + photons + frames + volume + encoder + current_rss_bytes() + (16ull << 20);
+    return photons + frames + volume + encoder + current_rss_bytes() + (16ull << 20);
 }
 
 MemoryPlan plan_memory(const SceneDesc& scene, const RunOptions& options) {
@@ -84,10 +79,14 @@ MemoryPlan plan_memory(const SceneDesc& scene, const RunOptions& options) {
             throw InputError("command line: --max-memory: " + format_bytes(budget) +
                              " cannot hold even one frame per section; that needs " + std::to_string(one_frame) +
                              " bytes of buffers, plus about " + format_bytes(plan.fixed_overhead_bytes) + " fixed");
-        // The smallest K that fits; section sizes only change where ceil(F/K) does.
-        int k = 1;
-        while (k < frames && section_buffer_bytes(scene, k) > budget) ++k;
-        plan.sections = k;
+        // The smallest K that fits (a section's buffer never grows with K: bisect).
+        int lo = 1, hi = frames;
+        while (lo < hi) {
+            int mid = lo + (hi - lo) / 2;
+            if (section_buffer_bytes(scene, mid) <= budget) hi = mid;
+            else lo = mid + 1;
+        }
+        plan.sections = lo;
     }
     plan.buffer_bytes_per_section = section_buffer_bytes(scene, plan.sections);
     // Encoding one section while the next renders needs two sections' buffers: only when a

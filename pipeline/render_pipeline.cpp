@@ -74,7 +74,7 @@ double exposure_from_preview(const RenderContext& ctx, SectionCounters& counters
         small.camera.height = std::max(8, ctx.height / 4);
         small.render.radius = ctx.initial_radius;
         RenderContext preview(small);
-        SectionLayout l = make_section(preview.timeline, preview.pulse_buckets, 1, 0);
+        SectionLayout l = make_section(preview.timeline, EmissionMode::Pulse, preview.pulse_buckets, 1, 0);
         SectionRun run = render_section(preview, l, passes, photons, counters);
         return exposure_of_brightest_pulse_frame(*run.buffer, preview);
     }
@@ -93,8 +93,7 @@ double exposure_from_preview(const RenderContext& ctx, SectionCounters& counters
 
 std::vector<SectionLayout> plan_sections(const RenderContext& ctx, const MemoryPlan& plan, Strategy strategy) {
     std::vector<SectionLayout> out;
-    for (int k = 0; k < plan.sections; ++k) {
-        SectionLayout l = make_section(ctx.timeline, ctx.pulse_buckets, plan.sections, k);
+    for (SectionLayout l : make_sections(ctx.timeline, ctx.scene.emission.mode, ctx.pulse_buckets, plan.sections)) {
         // The baseline renders every frame as a full, independent convergence, as the paper does.
         if (strategy == Strategy::FrameByFrame) l.full_paths = true;
         out.push_back(l);

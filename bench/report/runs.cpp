@@ -52,7 +52,7 @@ RunResult render(const sl::RenderContext& ctx, Strategy strategy, int passes, in
     for (int k = 0; k < sections; ++k) {
         auto ts = Clock::now();
         const double cs = cpu_seconds();
-        sl::SectionLayout layout = sl::make_section(ctx.timeline, ctx.pulse_buckets, sections, k);
+        sl::SectionLayout layout = sl::make_section(ctx.timeline, ctx.scene.emission.mode, ctx.pulse_buckets, sections, k);
         // As the pipeline's layout_for(): the baseline renders every frame with full paths.
         if (strategy == Strategy::FrameByFrame) layout.full_paths = true;
         sl::SectionRun run = sl::render_section(ctx, layout, passes, photons_per_pass, counters);
@@ -106,7 +106,7 @@ RayRate bare_embree_rays_per_s(const sl::RenderContext& ctx, size_t rays, int ro
 }
 
 RayRate photon_pass_rays_per_s(const sl::RenderContext& ctx, int passes, int64_t photons_per_pass, int rounds) {
-    sl::SectionLayout layout = sl::make_section(ctx.timeline, ctx.pulse_buckets, 1, 0);
+    sl::SectionLayout layout = sl::make_section(ctx.timeline, ctx.scene.emission.mode, ctx.pulse_buckets, 1, 0);
     sl::PhotonMap map;
     RayRate best;
     int pass = 0;

@@ -5,8 +5,8 @@
 //   L += beta K_r Phi_i p(theta_i) Tr(s_i) / N,   K_r = 1 / (pi r^2),
 //
 // into the slot of each photon's arrival time (plus the camera leg with camera_tof). Like the
-// surface gather, work is per pixel: each pixel's slots are written by one thread in a fixed
-// order. Then r shrinks for the next pass: r^2_(i+1) = r^2_i (i + alpha) / (i + 1).
+// surface gather, each pixel is gathered by the thread that traced it, in a fixed order. The
+// radius shrinks after every pass: r^2_(i+1) = r^2_i (i + alpha) / (i + 1).
 #include <cstdint>
 
 #include "stages/render/camera_segments.h"
@@ -21,10 +21,10 @@ struct BeamCounters {
     uint64_t photon_hits = 0;  // photons gathered
 };
 
-// Adds this pass's volume estimate to `buffer` and shrinks buffer.volume_radius2. Call it
-// before gather_photons (which counts the pass as done).
-BeamCounters gather_volume(const RenderContext& ctx, const CameraSegments& segments,
-                           const VolumePhotonMap& photons, int64_t photons_per_pass, SectionBuffer& buffer);
+// Adds the estimate along one pixel's segments to its slots, with this pass's volume radius
+// (buffer.volume_radius2) and `photons_emitted` photon paths.
+void gather_volume_at(const RenderContext& ctx, const PixelSegments& segments, const VolumePhotonMap& photons,
+                      int64_t photons_emitted, size_t pixel, SectionBuffer& buffer, BeamCounters& counters);
 
 // The volume radius schedule's factor after pass i (0-based): r^2_(i+1) / r^2_i.
 inline double volume_radius_shrink(int pass, double alpha) { return (pass + alpha) / (pass + 1.0); }

@@ -22,13 +22,15 @@ void for_each_tile(size_t pixels, F&& f) {
 FrameAssembler::FrameAssembler(const SectionBuffer& buffer, EmissionMode mode, int pulse_buckets)
     : buffer_(buffer), mode_(mode), pulse_buckets_(pulse_buckets),
       pixels_(buffer.radius2.size()),
-      scale_(buffer.passes_done > 0 ? 1.0f / static_cast<float>(buffer.passes_done) : 0.0f) {
+      scale_(buffer.passes_done > 0 ? 1.0f / static_cast<float>(buffer.passes_done) : 0.0f),
+      next_slot_(buffer.layout.first_bucket_slot()) {
     if (mode_ == EmissionMode::Constant) {
         running_.assign(pixels_ * 3, 0.0);
-        for_each_tile(pixels_, [&](size_t p0, size_t n) {
-            const float* src = buffer_.slot(p0, 0);
-            for (size_t i = 0; i < n * 3; ++i) running_[p0 * 3 + i] = src[i];
-        });
+        if (buffer.layout.has_before)
+            for_each_tile(pixels_, [&](size_t p0, size_t n) {
+                const float* src = buffer_.slot(p0, 0);
+                for (size_t i = 0; i < n * 3; ++i) running_[p0 * 3 + i] = src[i];
+            });
     }
 }
 
@@ -56,7 +58,7 @@ void FrameAssembler::frame(int global_frame, std::vector<float>& rgb) {
         });
         next_slot_ = last_slot + 1;
     } else {
-        sum_slots(std::max(1, last_slot - pulse_buckets_ + 1), last_slot, rgb);
+        sum_slots(std::max(l.first_bucket_slot(), last_slot - pulse_buckets_ + 1), last_slot, rgb);
     }
     add_ambient(rgb);
 }
@@ -89,6 +91,7 @@ void FrameAssembler::before_plane(std::vector<float>& rgb) const {
 
 void FrameAssembler::after_plane(std::vector<float>& rgb) const {
     int s = buffer_.layout.after_slot();
+    if (s < 0) throw std::logic_error("this section keeps no after slot");
     sum_slots(s, s, rgb);
 }
 

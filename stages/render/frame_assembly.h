@@ -33,7 +33,7 @@ private:
     size_t pixels_;
     float scale_;                 // 1 / passes
     std::vector<double> running_;  // constant emission: sum of slots up to the last frame
-    int next_slot_ = 1;
+    int next_slot_;
 };
 
 }  // namespace sl

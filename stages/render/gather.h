@@ -1,17 +1,29 @@
 #pragma once
-// The time-bucket scatter: every visible point collects the pass's photons within its radius
-// into the slot of each photon's arrival time, then shrinks its radius (progressive photon
-// mapping's N' = N + alpha M, R'^2 = R^2 (N + alpha M) / (N + M)). Work is per pixel, so each
-// pixel's slots are written by one thread in a fixed order: no atomics, repeatable sums.
+// The time-bucket scatter at one visible point: it collects the pass's photons within its
+// pixel's radius into the slot of each photon's arrival time, then shrinks the radius
+// (progressive photon mapping's N' = N + alpha M, R'^2 = R^2 (N + alpha M) / (N + M)). Each
+// pixel is gathered by the thread that traced it, in a fixed order: no atomics, repeatable sums.
 #include <cstdint>
 
+#include "core/vec3.h"
 #include "stages/render/photon_map.h"
+#include "stages/render/render_context.h"
 #include "stages/render/section_buffer.h"
-#include "stages/render/visible_points.h"
 
 namespace sl {
 
-void gather_photons(const RenderContext& ctx, const VisiblePoints& vps, const PhotonMap& photons,
-                    int64_t photons_per_pass, SectionBuffer& buffer);
+// Where a camera path first meets a diffuse surface.
+struct VisiblePoint {
+    Vec3 position;
+    Vec3 normal;         // unit, facing the camera path
+    Vec3 weight;         // camera throughput x BRDF (albedo / pi)
+    double camera_ns;    // time back to the camera (with camera_tof; else 0)
+    uint32_t depth_left;  // photon vertices this point may still accept
+};
+
+// Adds `photons`' estimate at `vp` to pixel `pixel` of `buffer` (flux / (pi R^2 emitted)) and
+// shrinks the pixel's radius. Returns the number of photons found.
+uint32_t gather_photons_at(const RenderContext& ctx, const VisiblePoint& vp, const PhotonMap& photons,
+                           int64_t photons_emitted, size_t pixel, SectionBuffer& buffer);
 
 }  // namespace sl

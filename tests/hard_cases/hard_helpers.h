@@ -64,7 +64,7 @@ inline Rendered render(const SceneDesc& scene, int sections = 1, bool frame_by_f
     if (frame_by_frame) sections = ctx.timeline.frames;
     SectionCounters counters;
     for (int k = 0; k < sections; ++k) {
-        SectionLayout layout = make_section(ctx.timeline, ctx.pulse_buckets, sections, k);
+        SectionLayout layout = make_section(ctx.timeline, ctx.scene.emission.mode, ctx.pulse_buckets, sections, k);
         if (frame_by_frame) layout.full_paths = true;
         SectionRun run = render_section(ctx, layout, scene.render.passes, scene.render.photons_per_pass, counters);
         const SectionBuffer& b = *run.buffer;

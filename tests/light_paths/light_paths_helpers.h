@@ -31,7 +31,7 @@ inline Rendered render_all(const SceneDesc& scene) {
     out.width = ctx.width;
     out.height = ctx.height;
     SectionCounters counters;
-    SectionLayout layout = make_section(ctx.timeline, ctx.pulse_buckets, 1, 0);
+    SectionLayout layout = make_section(ctx.timeline, ctx.scene.emission.mode, ctx.pulse_buckets, 1, 0);
     SectionRun run = render_section(ctx, layout, scene.render.passes, scene.render.photons_per_pass, counters);
     FrameAssembler a(*run.buffer, scene.emission.mode, ctx.pulse_buckets);
     for (int f = layout.first_frame; f < layout.end_frame; ++f) {

@@ -21,7 +21,7 @@ inline Rendered render_all(const SceneDesc& scene, EmissionMode mode = EmissionM
     out.height = ctx.height;
     SectionCounters counters;
     for (int k = 0; k < sections; ++k) {
-        SectionLayout layout = make_section(ctx.timeline, ctx.pulse_buckets, sections, k);
+        SectionLayout layout = make_section(ctx.timeline, ctx.scene.emission.mode, ctx.pulse_buckets, sections, k);
         SectionRun run = render_section(ctx, layout, scene.render.passes, scene.render.photons_per_pass, counters);
         FrameAssembler a(*run.buffer, mode, ctx.pulse_buckets);
         for (int f = layout.first_frame; f < layout.end_frame; ++f) {

@@ -14,7 +14,7 @@ TEST(EmissionModes, PulseFramesSumToLastConstantFrameMinusBeforeStart) {
     s.time = {5, 17, 12, 24};  // starts after light has already reached the walls
     RenderContext ctx(s);
     SectionCounters counters;
-    SectionLayout layout = make_section(ctx.timeline, 1, 1, 0);
+    SectionLayout layout = make_section(ctx.timeline, ctx.scene.emission.mode, 1, 1, 0);
     SectionRun run = render_section(ctx, layout, s.render.passes, s.render.photons_per_pass, counters);
     FrameAssembler constant(*run.buffer, EmissionMode::Constant, 1), pulse(*run.buffer, EmissionMode::Pulse, 1);
     std::vector<float> last, frame, sum(ctx.pixels() * 3, 0.0f);
@@ -59,7 +59,7 @@ TEST(EmissionModes, WiderPulseIsTheSumOfNarrowOnes) {
     RenderContext wide_ctx(s);
     ASSERT_EQ(wide_ctx.pulse_buckets, 3);
     SectionCounters counters;
-    SectionRun run = render_section(wide_ctx, make_section(wide_ctx.timeline, 3, 1, 0), 3, 3000, counters);
+    SectionRun run = render_section(wide_ctx, make_section(wide_ctx.timeline, wide_ctx.scene.emission.mode, 3, 1, 0), 3, 3000, counters);
     FrameAssembler wide(*run.buffer, EmissionMode::Pulse, 3), narrow(*run.buffer, EmissionMode::Pulse, 1);
     std::vector<std::vector<float>> n(12);
     std::vector<float> w;

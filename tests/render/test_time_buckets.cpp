@@ -2,7 +2,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <algorithm>
 #include <limits>
+#include <vector>
 
 #include "core/timeline.h"
 #include "stages/render/section_layout.h"
@@ -45,22 +47,76 @@ TEST(Timeline, PicosecondBinsInAHundredMeterScene) {
     }
 }
 
-TEST(SectionLayout, SlotsCoverBeforeFramesAndAfter) {
+TEST(SectionLayout, SlotsCoverBeforeFramesAndAfterWhereNeeded) {
     Timeline tl{0, 12, 48};
-    SectionLayout s = make_section(tl, 1, 4, 1);  // frames 12..23
-    EXPECT_EQ(s.first_frame, 12);
-    EXPECT_EQ(s.end_frame, 24);
-    EXPECT_FALSE(s.full_paths);
-    EXPECT_DOUBLE_EQ(s.cut_ns, 6.0);
+    // Constant emission from t = 0: the first section has nothing earlier, the middle ones
+    // keep a "before" slot, the last one "before" and "after" (steady.exr): extras 0, 1, 1, 2,
+    // so 13, 12, 12, 11 frames give every section 13 slots.
+    std::vector<SectionLayout> c = make_sections(tl, EmissionMode::Constant, 1, 4);
+    ASSERT_EQ(c.size(), 4u);
+    const int frames[] = {13, 12, 12, 11};
+    for (int k = 0; k < 4; ++k) {
+        EXPECT_EQ(c[k].frames(), frames[k]) << k;
+        EXPECT_EQ(c[k].slots(), 13) << k;
+        EXPECT_EQ(c[k].full_paths, k == 3);
+        EXPECT_EQ(c[k].has_before, k > 0);
+        EXPECT_EQ(c[k].has_after, k == 3);
+    }
+    const SectionLayout& s = c[1];  // frames 13..24
+    EXPECT_EQ(s.first_frame, 13);
+    EXPECT_EQ(s.end_frame, 25);
+    EXPECT_DOUBLE_EQ(s.cut_ns, 6.25);
     EXPECT_EQ(s.slot_of_bucket(-5), 0);
-    EXPECT_EQ(s.slot_of_bucket(11), 0);
-    EXPECT_EQ(s.slot_of_bucket(12), 1);
-    EXPECT_EQ(s.slot_of_bucket(23), 12);
-    EXPECT_EQ(s.slot_of_bucket(24), s.after_slot());
-    SectionLayout pulse = make_section(tl, 3, 4, 1);  // a pulse of 3 buckets looks back 2
-    EXPECT_EQ(pulse.first_bucket, 10);
-    EXPECT_EQ(pulse.slot_of_bucket(10), 1);
-    EXPECT_TRUE(make_section(tl, 1, 4, 3).full_paths);
+    EXPECT_EQ(s.slot_of_bucket(12), 0);
+    EXPECT_EQ(s.slot_of_bucket(13), 1);
+    EXPECT_EQ(s.slot_of_bucket(24), 12);
+    EXPECT_EQ(s.slot_of_bucket(25), -1);  // later light: of no use to this section
+    EXPECT_EQ(c[0].slot_of_bucket(0), 0);
+    EXPECT_EQ(c[0].slot_of_bucket(-1), -1);
+    EXPECT_EQ(c[3].slot_of_bucket(48), c[3].after_slot());
+    EXPECT_EQ(c[3].after_slot(), 12);
+
+    // A pulse of 3 buckets looks back 2 in every section and needs no "before" but in the last.
+    std::vector<SectionLayout> p = make_sections(tl, EmissionMode::Pulse, 3, 4);
+    EXPECT_EQ(p[1].first_bucket, p[1].first_frame - 2);
+    EXPECT_FALSE(p[1].has_before);
+    EXPECT_EQ(p[1].slot_of_bucket(p[1].first_bucket), 0);
+    EXPECT_EQ(p[1].slot_of_bucket(p[1].first_bucket - 1), -1);
+    EXPECT_TRUE(p[3].has_before && p[3].has_after);
+    EXPECT_EQ(max_section_slots(tl, EmissionMode::Pulse, 3, 4), 15);
+
+    // A timeline that starts after t = 0: the first section does see earlier light.
+    EXPECT_TRUE(make_section(Timeline{2, 14, 48}, EmissionMode::Constant, 1, 4, 0).has_before);
+}
+
+TEST(SectionLayout, FramesAreSharedSoThatBuffersAreAsEqualAsPossible) {
+    for (EmissionMode mode : {EmissionMode::Constant, EmissionMode::Pulse})
+        for (int pulse : {1, 4})
+            for (int f : {1, 2, 3, 7, 48, 192, 1000})
+                for (int k = 1; k <= std::min(f, 40); ++k) {
+                    Timeline tl{0, 1, f};
+                    std::vector<SectionLayout> s = make_sections(tl, mode, pulse, k);
+                    ASSERT_EQ(static_cast<int>(s.size()), k);
+                    int next = 0, most = 0, least = 1 << 30;
+                    bool any_forced = false;  // a section held at one frame may sit below the rest
+                    for (const SectionLayout& l : s) {
+                        ASSERT_EQ(l.first_frame, next);
+                        ASSERT_GE(l.frames(), 1);
+                        next = l.end_frame;
+                        most = std::max(most, l.slots());
+                        least = std::min(least, l.slots());
+                        any_forced |= l.frames() == 1;
+                    }
+                    ASSERT_EQ(next, f);
+                    if (!any_forced) {
+                        ASSERT_LE(most - least, 1) << f << " frames, " << k << " sections";
+                    }
+                    ASSERT_EQ(most, max_section_slots(tl, mode, pulse, k));
+                    // More sections never need a larger buffer (--max-memory searches on this).
+                    if (k > 1) {
+                        ASSERT_LE(most, max_section_slots(tl, mode, pulse, k - 1));
+                    }
+                }
 }
 
 }  // namespace

@@ -1,26 +1,36 @@
-#include "stages/render/visible_points.h"
+#include "stages/render/camera_pass.h"
 
 #include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#if defined(__x86_64__) || defined(__i386__)
+#include <x86intrin.h>
+#endif
 
 #include "core/rng.h"
 #include "core/scattering.h"
 
 namespace sl {
 
-void VisiblePoints::resize(size_t n, bool camera_time) {
-    for (auto* v : {&px, &py, &pz, &wr, &wg, &wb}) v->assign(n, 0.0f);
-    normal.assign(n, OctNormal{});
-    camera_ns.assign(camera_time ? n : 0, 0.0);
-    depth_left.assign(n, 0);
-    valid.assign(n, 0);
-}
-
 namespace {
+
+// A cheap clock for splitting the pass's time between its parts, pixel by pixel.
+inline uint64_t cycle_clock() {
+#if defined(__x86_64__) || defined(__i386__)
+    return __rdtsc();
+#else
+    return static_cast<uint64_t>(std::chrono::steady_clock::now().time_since_epoch().count());
+#endif
+}
 
 // Adds radiance arriving at time t (ns) to a pixel's slot for this pass.
 inline void deposit(SectionBuffer& buffer, const Timeline& tl, size_t pixel, double t, Vec3 L) {
-    int s = buffer.layout.slot_of_bucket(tl.bucket(t));
+    const int s = buffer.layout.slot_of_bucket(tl.bucket(t));
+    if (s < 0) return;  // a time this section keeps nothing for
     float* acc = buffer.slot(pixel, s);
     acc[0] += L.x;
     acc[1] += L.y;
@@ -29,12 +39,14 @@ inline void deposit(SectionBuffer& buffer, const Timeline& tl, size_t pixel, dou
 
 struct PixelTracer {
     const RenderContext& ctx;
-    VisiblePoints& vps;
     SectionBuffer& buffer;
     int pass;
-    CameraSegments* segments;         // with a medium, when the beam estimate wants them
     const HomogeneousMedium* medium;  // null in vacuum
     uint64_t rays = 0;
+    // The pixel's path, for the estimates at its end.
+    VisiblePoint vp{};
+    bool has_visible_point = false;
+    PixelSegments segments;
 
     void trace(size_t pixel) {
         const SceneDesc& sc = ctx.scene;
@@ -48,8 +60,8 @@ struct PixelTracer {
         float inside_ior = 1;
         int specular = 0;
         float tnear = 0;
-        vps.valid[pixel] = 0;
-        if (segments) segments->count[pixel] = 0;
+        has_visible_point = false;
+        segments.count = 0;
         const bool tof = sc.render.camera_tof;
         for (;;) {
             SurfaceHit hit;
@@ -89,8 +101,8 @@ struct PixelTracer {
     void cross_medium(size_t pixel, Vec3 o, Vec3 d, float tnear, float tfar, double leg_ns, int specular, Vec3& beta) {
         float t0, t1;
         if (!medium->clip(o, d, tnear, tfar, t0, t1)) return;
-        if (segments && segments->count[pixel] < CameraSegments::kPerPixel) {
-            CameraSegment& s = segments->segments[pixel * CameraSegments::kPerPixel + segments->count[pixel]++];
+        if (segments.count < PixelSegments::kCapacity) {
+            CameraSegment& s = segments.segment[segments.count++];
             s.origin = o + d * t0;
             s.dir = d;
             s.length = t1 - t0;
@@ -107,12 +119,8 @@ struct PixelTracer {
         const bool tof = sc.render.camera_tof;
         const double back_ns = tof ? leg_ns : 0.0;
         Vec3 f = albedo_beta * (1.0f / kPi);  // Lambertian BRDF times camera throughput
-        vps.px[pixel] = p.x; vps.py[pixel] = p.y; vps.pz[pixel] = p.z;
-        vps.normal[pixel] = encode_normal(nf);
-        vps.wr[pixel] = f.x; vps.wg[pixel] = f.y; vps.wb[pixel] = f.z;
-        if (tof) vps.camera_ns[pixel] = back_ns;
-        vps.depth_left[pixel] = static_cast<uint16_t>(sc.render.max_depth - specular);
-        vps.valid[pixel] = 1;
+        vp = VisiblePoint{p, nf, f, back_ns, static_cast<uint32_t>(sc.render.max_depth - specular)};
+        has_visible_point = true;
         if (!buffer.ambient.empty()) {
             Vec3 a = albedo_beta * sc.render.ambient;
             float* amb = &buffer.ambient[pixel * 3];
@@ -136,17 +144,63 @@ struct PixelTracer {
 
 }  // namespace
 
-void camera_pass(const RenderContext& ctx, int pass, VisiblePoints& vps, SectionBuffer& buffer,
-                 CameraPassCounters& counters, CameraSegments* segments) {
-    if (vps.valid.size() != ctx.pixels()) vps.resize(ctx.pixels(), ctx.scene.render.camera_tof);
+CameraPassTimes camera_pass(const RenderContext& ctx, int pass, const PassPhotons& photons, SectionBuffer& buffer,
+                            CameraPassCounters& counters) {
     const HomogeneousMedium* medium = ctx.medium ? &*ctx.medium : nullptr;
-    if (!medium) segments = nullptr;
-    if (segments && segments->pixels() != ctx.pixels()) segments->resize(ctx.pixels());
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, ctx.pixels(), 256), [&](const tbb::blocked_range<size_t>& r) {
-        PixelTracer tracer{ctx, vps, buffer, pass, segments, medium};
-        for (size_t p = r.begin(); p != r.end(); ++p) tracer.trace(p);
-        counters.rays.fetch_add(tracer.rays, std::memory_order_relaxed);
-    });
+    const VolumePhotonMap* volume = medium ? photons.volume : nullptr;
+    struct Work {
+        double max_r2 = 0;
+        uint64_t trace = 0, volume = 0, gather = 0;  // cycles
+    };
+    const auto t0 = std::chrono::steady_clock::now();
+    const std::clock_t cpu0 = std::clock();
+    Work total = tbb::parallel_reduce(
+        tbb::blocked_range<size_t>(0, ctx.pixels(), 256), Work{},
+        [&](const tbb::blocked_range<size_t>& r, Work w) {
+            PixelTracer tracer{ctx, buffer, pass, medium, 0, {}, false, {}};
+            BeamCounters beam;
+            for (size_t p = r.begin(); p != r.end(); ++p) {
+                const uint64_t c0 = cycle_clock();
+                tracer.trace(p);
+                const uint64_t c1 = cycle_clock();
+                if (volume && tracer.segments.count > 0)
+                    gather_volume_at(ctx, tracer.segments, *volume, photons.emitted, p, buffer, beam);
+                const uint64_t c2 = cycle_clock();
+                if (tracer.has_visible_point)
+                    gather_photons_at(ctx, tracer.vp, photons.surface, photons.emitted, p, buffer);
+                w.max_r2 = std::max(w.max_r2, buffer.radius2[p]);
+                const uint64_t c3 = cycle_clock();
+                w.trace += c1 - c0;
+                w.volume += c2 - c1;
+                w.gather += c3 - c2;
+            }
+            counters.rays.fetch_add(tracer.rays, std::memory_order_relaxed);
+            counters.beam_segments.fetch_add(beam.segments, std::memory_order_relaxed);
+            counters.beam_hits.fetch_add(beam.photon_hits, std::memory_order_relaxed);
+            return w;
+        },
+        [](Work a, const Work& b) {
+            a.max_r2 = std::max(a.max_r2, b.max_r2);
+            a.trace += b.trace;
+            a.volume += b.volume;
+            a.gather += b.gather;
+            return a;
+        });
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double cpu = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
+    buffer.max_radius = std::sqrt(total.max_r2);
+    if (medium) buffer.volume_radius2 *= volume_radius_shrink(buffer.passes_done, ctx.scene.render.alpha);
+    ++buffer.passes_done;
+
+    CameraPassTimes times;
+    const double cycles = static_cast<double>(total.trace + total.volume + total.gather);
+    if (cycles > 0) {
+        times.trace = wall * static_cast<double>(total.trace) / cycles;
+        times.volume = wall * static_cast<double>(total.volume) / cycles;
+        times.gather = wall * static_cast<double>(total.gather) / cycles;
+        times.volume_cpu = cpu * static_cast<double>(total.volume) / cycles;
+    }
+    return times;
 }
 
 }  // namespace sl
