@@ -40,6 +40,8 @@ struct FrameImage {
     std::vector<float> rgb;
     std::vector<float> before, bucket, after;  // transient-cube planes, when asked for
 };
+// Frames travel by pointer: a flow-graph edge copies its message, and a frame is megabytes.
+using FramePtr = std::shared_ptr<FrameImage>;
 
 // Pulse frames are far dimmer than the steady image, and a seen emitter lights only the first
 // one: expose for the 99th percentile of the lit pixels of all frames pooled (a strided subset
@@ -166,10 +168,11 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameOutputs& outputs, const 
     });
     flow::queue_node<FrameJob> frame_queue(g);
     flow::limiter_node<FrameJob> frames_alive(g, 2);
-    flow::function_node<FrameJob, FrameImage> assemble(g, flow::serial, [&](const FrameJob& job_in) {
+    flow::function_node<FrameJob, FramePtr> assemble(g, flow::serial, [&](const FrameJob& job_in) {
         auto t0 = Clock::now();
         Section& s = *job_in.section;
-        FrameImage img{job_in.section, job_in.frame, {}, {}, {}, {}};
+        auto out = std::make_shared<FrameImage>(FrameImage{job_in.section, job_in.frame, {}, {}, {}, {}});
+        FrameImage& img = *out;
         if (s.from_disk) {
             img.rgb = read_exr(outputs.exr_frame_path(job_in.frame)).rgb;
         } else {
@@ -193,10 +196,11 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameOutputs& outputs, const 
             }
         }
         stats.assembly += since(t0);
-        return img;
+        return out;
     });
-    using Write = flow::multifunction_node<FrameImage, std::tuple<flow::continue_msg, flow::continue_msg>>;
-    Write write(g, flow::serial, [&](const FrameImage& img, Write::output_ports_type& out) {
+    using Write = flow::multifunction_node<FramePtr, std::tuple<flow::continue_msg, flow::continue_msg>>;
+    Write write(g, flow::serial, [&](const FramePtr& frame, Write::output_ports_type& out) {
+        const FrameImage& img = *frame;
         auto t0 = Clock::now();
         outputs.write_frame(img.frame, img.rgb, img.section->from_disk);
         if (!img.before.empty()) outputs.write_cube_plane(img.before);
