@@ -83,3 +83,33 @@ TEST(ToneMap, NanBecomesZero) {
     EXPECT_EQ(out[2], 0);
     EXPECT_EQ(out[3], 255);
 }
+
+// The fast path (a table guess from the float's bits, then exact boundaries) gives the byte
+// of the IEC 61966-2-1 formula itself: checked on a log-uniform spread of values over every
+// byte, and right at and around each of the 255 byte boundaries.
+TEST(ToneMap, EveryByteIsTheFormulasOwn) {
+    auto formula = [](double c) {
+        c = std::clamp(c, 0.0, 1.0);
+        double v = c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
+        return static_cast<int>(std::lround(255.0 * v));
+    };
+    std::mt19937_64 rng(5);
+    std::uniform_real_distribution<double> log10c(-8.0, 0.2);
+    std::vector<float> values;
+    for (int i = 0; i < 300000; ++i) values.push_back(static_cast<float>(std::pow(10.0, log10c(rng))));
+    // Each boundary: bisect (in float) for the first value whose byte changes, and its neighbours.
+    for (int b = 1; b < 256; ++b) {
+        float lo = 0, hi = 1;
+        for (int it = 0; it < 64; ++it) {
+            float mid = 0.5f * (lo + hi);
+            (formula(mid) >= b ? hi : lo) = mid;
+        }
+        for (float v : {hi, std::nextafter(hi, 0.0f), std::nextafter(hi, 2.0f), lo}) values.push_back(v);
+    }
+    std::vector<float> rgb = gray(values);
+    std::vector<uint8_t> out(rgb.size());
+    sl::tone_map_srgb8(rgb.data(), static_cast<int>(values.size()), 1, 1.0, out.data());
+    int wrong = 0;
+    for (size_t i = 0; i < values.size(); ++i) wrong += out[3 * i] != formula(values[i]);
+    EXPECT_EQ(wrong, 0);
+}
