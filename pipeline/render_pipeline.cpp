@@ -2,6 +2,8 @@
 
 #include <tbb/flow_graph.h>
 
+#include <malloc.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -121,6 +123,7 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameOutputs& outputs, const 
     } else if (outputs.needs_exposure() && (plan.sections > 1 || resumed(0))) {
         auto t0 = Clock::now();
         outputs.set_exposure(exposure_from_preview(ctx, counters));
+        malloc_trim(0);  // the preview's photon map and buffer: back to the system
         stats.exposure_pass = since(t0);
     }
 
@@ -212,6 +215,7 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameOutputs& outputs, const 
             ++stats.sections_done;
             img.section->assembler.reset();
             img.section->run.buffer.reset();
+            malloc_trim(0);  // hand the section's freed working memory back before the next one grows
         }
         std::get<0>(out).try_put(flow::continue_msg());
         if (last) std::get<1>(out).try_put(flow::continue_msg());
