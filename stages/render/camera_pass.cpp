@@ -12,7 +12,7 @@
 #endif
 
 #include "core/rng.h"
-#include "core/scattering.h"
+#include "core/specular_path.h"
 
 namespace sl {
 
@@ -84,13 +84,7 @@ struct PixelTracer {
                 return;
             }
             if (++specular >= sc.render.max_depth) return;
-            SpecularBounce b = specular_bounce(m, d, hit.normal, inside, rng);
-            beta *= b.weight;
-            if (b.inside_after != inside) inside_ior = m.ior;
-            inside = b.inside_after;
-            Vec3 side = dot(b.direction, hit.normal) > 0 ? hit.normal : -hit.normal;
-            o = hit.position + side * ray_epsilon(hit.position, hit.t);
-            d = b.direction;
+            beta *= follow_specular(m, hit, o, d, inside, inside_ior, rng);
             tnear = 0;
             if (is_black(beta)) return;
         }

@@ -6,7 +6,7 @@
 #include <bit>
 
 #include "core/rng.h"
-#include "core/scattering.h"
+#include "core/specular_path.h"
 
 namespace sl {
 namespace {
@@ -79,13 +79,7 @@ struct PhotonPath {
                 d = sample_cosine_hemisphere(nf, rng.uniform(), rng.uniform());
                 o = hit.position + nf * ray_epsilon(hit.position, hit.t);
             } else {
-                SpecularBounce b = specular_bounce(m, d, hit.normal, inside, rng);
-                flux *= b.weight;
-                if (b.inside_after != inside) inside_ior = m.ior;
-                inside = b.inside_after;
-                Vec3 side = dot(b.direction, hit.normal) > 0 ? hit.normal : -hit.normal;
-                o = hit.position + side * ray_epsilon(hit.position, hit.t);
-                d = b.direction;
+                flux *= follow_specular(m, hit, o, d, inside, inside_ior, rng);
             }
             if (is_black(flux)) return;
         }
