@@ -18,6 +18,8 @@
 #include "stages/render/frame_assembly.h"
 #include "stages/render/render_context.h"
 #include "stages/render/section_renderer.h"
+#include "tests/common/temp_dir.h"
+#include "tests/render/scenes_for_tests.h"
 
 namespace sl::hard {
 
@@ -127,51 +129,16 @@ inline LightDesc point_light(Vec3 p, float power) {
     return l;
 }
 
-// A closed 2 m box with a quad light under its ceiling, seen from inside.
+// A closed 2 m box with a quad light under its ceiling, seen from inside: the tests' Cornell
+// box with every wall white (0.7).
 inline SceneDesc closed_box(int res, int passes, int64_t photons, int max_depth = 8) {
-    SceneDesc s;
+    SceneDesc s = test::small_box(res, passes, photons, max_depth);
     s.source = "<hard box>";
-    s.camera.position = {0, 1, 0.99f};
-    s.camera.look_at = {0, 1, 0};
-    s.camera.vfov_deg = 90;
-    s.camera.width = s.camera.height = res;
-    s.materials = {diffuse("white", 0.7f)};
-    s.shapes = {quad({-1, 0, 1}, {2, 0, 0}, {0, 0, -2}), quad({-1, 2, -1}, {2, 0, 0}, {0, 0, 2}),
-                quad({-1, 0, -1}, {2, 0, 0}, {0, 2, 0}), quad({-1, 0, 1}, {2, 0, 0}, {0, 2, 0}),
-                quad({-1, 0, 1}, {0, 0, -2}, {0, 2, 0}), quad({1, 0, -1}, {0, 0, 2}, {0, 2, 0})};
-    LightDesc l;
-    l.type = LightType::Quad;
-    l.corner = {-0.25f, 1.98f, -0.2f};
-    l.edge1 = {0.5f, 0, 0};
-    l.edge2 = {0, 0, 0.4f};
-    l.radiance = {17, 12, 4};
-    s.lights.push_back(l);
-    s.time = {0, 24, 12, 24};
-    s.render.passes = passes;
-    s.render.photons_per_pass = photons;
-    s.render.max_depth = max_depth;
+    s.materials.resize(1);
+    for (ShapeDesc& shape : s.shapes) shape.material = 0;
     return s;
 }
 
-// A fresh temporary directory, removed with its contents.
-class TempDir {
-public:
-    TempDir() {
-        std::string t = (std::filesystem::temp_directory_path() / "sl_hard_XXXXXX").string();
-        if (!::mkdtemp(t.data())) throw std::runtime_error("mkdtemp failed");
-        path_ = t;
-    }
-    ~TempDir() {
-        std::error_code ec;
-        std::filesystem::remove_all(path_, ec);
-    }
-    TempDir(const TempDir&) = delete;
-    TempDir& operator=(const TempDir&) = delete;
-    std::string file(const std::string& name) const { return (path_ / name).string(); }
-    std::string path() const { return path_.string(); }
-
-private:
-    std::filesystem::path path_;
-};
+using test::TempDir;
 
 }  // namespace sl::hard

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "core/errors.h"
-#include "tests/output/temp_dir.h"
+#include "tests/common/temp_dir.h"
 
 namespace {
 

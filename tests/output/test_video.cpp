@@ -15,7 +15,7 @@ extern "C" {
 #include "core/errors.h"
 #include "stages/output/video_encoder.h"
 #include "stages/output/video_reader.h"
-#include "tests/output/temp_dir.h"
+#include "tests/common/temp_dir.h"
 
 namespace {
 

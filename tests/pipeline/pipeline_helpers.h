@@ -16,32 +16,13 @@
 #include <vector>
 
 #include "stages/output/exr_io.h"
+#include "tests/common/temp_dir.h"
 #include "tests/pipeline/run_program.h"
 #include "tests/test_paths.h"
 
 namespace sl::test {
 
-// A fresh directory per test, removed with everything in it afterwards.
-class ScratchDir {
-public:
-    ScratchDir() {
-        std::string templ = (std::filesystem::temp_directory_path() / "sl_pipeline_XXXXXX").string();
-        if (!::mkdtemp(templ.data())) throw std::runtime_error("mkdtemp failed");
-        path_ = templ;
-    }
-    ~ScratchDir() {
-        std::error_code ec;
-        std::filesystem::remove_all(path_, ec);
-    }
-    ScratchDir(const ScratchDir&) = delete;
-    ScratchDir& operator=(const ScratchDir&) = delete;
-
-    std::string file(const std::string& name) const { return (path_ / name).string(); }
-    const std::filesystem::path& path() const { return path_; }
-
-private:
-    std::filesystem::path path_;
-};
+using ScratchDir = TempDir;
 
 inline std::string sample(const std::string& name) {
     return (std::filesystem::path(source_dir()) / "samples" / name).string();

@@ -1,5 +1,7 @@
 #pragma once
 // Scenes built in code for the renderer's tests, where every number is known.
+#include <cstdint>
+
 #include "config/scene_desc.h"
 
 namespace sl::test {
@@ -36,7 +38,7 @@ inline SceneDesc plane_under_point_light(float rho, float P, float h, float cam_
 }
 
 // A closed Cornell-like box (2 m cube) with a quad light under its ceiling.
-inline SceneDesc small_box(int res, int passes, int photons, int max_depth = 8) {
+inline SceneDesc small_box(int res, int passes, int64_t photons, int max_depth = 8) {
     SceneDesc s;
     s.source = "<test box>";
     s.camera.position = {0, 1, 0.99f};

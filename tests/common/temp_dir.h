@@ -1,5 +1,5 @@
 #pragma once
-// A fresh directory per test, removed with everything in it afterwards.
+// A fresh directory per test, removed with everything in it afterwards (every test binary's).
 #include <cstdlib>
 #include <filesystem>
 #include <stdexcept>
@@ -10,8 +10,8 @@ namespace sl::test {
 
 class TempDir {
 public:
-    TempDir() {
-        std::string templ = (std::filesystem::temp_directory_path() / "sl_output_XXXXXX").string();
+    explicit TempDir(const std::string& prefix = "sl_test") {
+        std::string templ = (std::filesystem::temp_directory_path() / (prefix + "_XXXXXX")).string();
         if (!::mkdtemp(templ.data())) throw std::runtime_error("mkdtemp failed");
         path_ = templ;
     }
