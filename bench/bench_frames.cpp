@@ -23,6 +23,7 @@
 #include "stages/render/frame_assembly.h"
 #include "stages/render/render_context.h"
 #include "stages/render/section_renderer.h"
+#include "bench/common/random_rays.h"
 
 namespace {
 
@@ -88,27 +89,14 @@ void BM_PhotonPass(benchmark::State& state) {
 void BM_BareEmbree(benchmark::State& state) {
     sl::SceneDesc scene = cornell(1);
     sl::RenderContext ctx(scene);
-    const sl::Vec3 lo = ctx.geometry.bounds_min(), hi = ctx.geometry.bounds_max();
     const size_t batches = 512, per_batch = 4096;
     for (auto _ : state) {
-        std::atomic<uint64_t> hits{0};
         auto t0 = Clock::now();
-        tbb::parallel_for(size_t(0), batches, [&](size_t b) {
-            sl::Rng rng(7, 3, b);
-            uint64_t h = 0;
-            for (size_t i = 0; i < per_batch; ++i) {
-                sl::Vec3 o{lo.x + (hi.x - lo.x) * rng.uniform(), lo.y + (hi.y - lo.y) * rng.uniform(),
-                           lo.z + (hi.z - lo.z) * rng.uniform()};
-                sl::Vec3 d = sl::sample_uniform_sphere(rng.uniform(), rng.uniform());
-                sl::SurfaceHit hit;
-                h += ctx.geometry.intersect(o, d, 0, 1e30f, hit);
-            }
-            hits += h;
-        });
+        const uint64_t hits = sl::bench::trace_random_rays(ctx, batches, per_batch, 0);  // same rays each round
         double secs = std::chrono::duration<double>(Clock::now() - t0).count();
         state.SetIterationTime(secs);
         g_bare_rays_per_s = std::max(g_bare_rays_per_s, batches * per_batch / secs);
-        benchmark::DoNotOptimize(hits.load());
+        benchmark::DoNotOptimize(hits);
     }
 }
 

@@ -14,6 +14,7 @@
 #include "stages/render/photon_map.h"
 #include "stages/render/section_layout.h"
 #include "stages/render/section_renderer.h"
+#include "bench/common/random_rays.h"
 
 namespace report {
 namespace {
@@ -79,27 +80,14 @@ RunResult render(const sl::RenderContext& ctx, Strategy strategy, int passes, in
 }
 
 RayRate bare_embree_rays_per_s(const sl::RenderContext& ctx, size_t rays, int rounds) {
-    const sl::Vec3 lo = ctx.geometry.bounds_min(), hi = ctx.geometry.bounds_max();
     const size_t per_batch = 4096, batches = std::max<size_t>(1, rays / per_batch);
     RayRate best;
     for (int r = 0; r < rounds; ++r) {
-        std::atomic<uint64_t> hits{0};
         auto t0 = Clock::now();
         const double c0 = cpu_seconds();
-        tbb::parallel_for(size_t(0), batches, [&](size_t b) {
-            sl::Rng rng(7, 3, static_cast<uint64_t>(r), b);
-            uint64_t h = 0;
-            for (size_t i = 0; i < per_batch; ++i) {
-                sl::Vec3 o{lo.x + (hi.x - lo.x) * rng.uniform(), lo.y + (hi.y - lo.y) * rng.uniform(),
-                           lo.z + (hi.z - lo.z) * rng.uniform()};
-                sl::Vec3 d = sl::sample_uniform_sphere(rng.uniform(), rng.uniform());
-                sl::SurfaceHit hit;
-                h += ctx.geometry.intersect(o, d, 0, 1e30f, hit);
-            }
-            hits += h;
-        });
+        const uint64_t hits = sl::bench::trace_random_rays(ctx, batches, per_batch, static_cast<uint64_t>(r));
         double secs = since(t0), cpu = cpu_seconds() - c0;
-        if (hits.load() == 0) return {};  // nothing to hit: no meaningful ceiling
+        if (hits == 0) return {};  // nothing to hit: no meaningful ceiling
         keep_best(best, static_cast<double>(batches * per_batch), secs, cpu);
     }
     return best;
