@@ -111,15 +111,7 @@ inline MaterialDesc diffuse(const char* name, float albedo) {
     return m;
 }
 
-inline ShapeDesc quad(Vec3 corner, Vec3 e1, Vec3 e2, int material = 0) {
-    ShapeDesc q;
-    q.type = ShapeType::Quad;
-    q.corner = corner;
-    q.edge1 = e1;
-    q.edge2 = e2;
-    q.material = material;
-    return q;
-}
+using test::quad;
 
 inline LightDesc point_light(Vec3 p, float power) {
     LightDesc l;

@@ -11,6 +11,7 @@
 #include "stages/render/frame_assembly.h"
 #include "stages/render/render_context.h"
 #include "stages/render/section_renderer.h"
+#include "tests/render/scenes_for_tests.h"
 
 namespace sl::lp {
 
@@ -71,13 +72,7 @@ inline int add_material(SceneDesc& s, MaterialType type, Vec3 albedo_or_reflecta
 }
 
 inline void add_quad(SceneDesc& s, Vec3 corner, Vec3 e1, Vec3 e2, int material) {
-    ShapeDesc q;
-    q.type = ShapeType::Quad;
-    q.corner = corner;
-    q.edge1 = e1;
-    q.edge2 = e2;
-    q.material = material;
-    s.shapes.push_back(q);
+    s.shapes.push_back(test::quad(corner, e1, e2, material));
 }
 
 inline void add_box(SceneDesc& s, Vec3 lo, Vec3 hi, int material) {

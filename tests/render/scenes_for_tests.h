@@ -6,6 +6,17 @@
 
 namespace sl::test {
 
+// A parallelogram corner + u e1 + v e2 (u, v in [0, 1]) of the given material.
+inline ShapeDesc quad(Vec3 corner, Vec3 e1, Vec3 e2, int material = 0) {
+    ShapeDesc q;
+    q.type = ShapeType::Quad;
+    q.corner = corner;
+    q.edge1 = e1;
+    q.edge2 = e2;
+    q.material = material;
+    return q;
+}
+
 // A diffuse plane y = 0 of half-size `half` (albedo rho), a point light of power P at height h
 // above the origin, and a camera at height cam_h looking straight down (90 degree field).
 inline SceneDesc plane_under_point_light(float rho, float P, float h, float cam_h, int res, float half = 50) {
@@ -20,12 +31,7 @@ inline SceneDesc plane_under_point_light(float rho, float P, float h, float cam_
     m.name = "grey";
     m.albedo = Vec3(rho);
     s.materials.push_back(m);
-    ShapeDesc q;
-    q.type = ShapeType::Quad;
-    q.corner = {-half, 0, half};
-    q.edge1 = {2 * half, 0, 0};
-    q.edge2 = {0, 0, -2 * half};
-    s.shapes.push_back(q);
+    s.shapes.push_back(quad({-half, 0, half}, {2 * half, 0, 0}, {0, 0, -2 * half}));
     LightDesc l;
     l.type = LightType::Point;
     l.position = {0, h, 0};
@@ -50,18 +56,12 @@ inline SceneDesc small_box(int res, int passes, int64_t photons, int max_depth =
     red.name = "red"; red.albedo = {0.63f, 0.065f, 0.05f};
     green.name = "green"; green.albedo = {0.14f, 0.45f, 0.091f};
     s.materials = {white, red, green};
-    auto quad = [&](Vec3 c, Vec3 e1, Vec3 e2, int mat) {
-        ShapeDesc q;
-        q.type = ShapeType::Quad;
-        q.corner = c; q.edge1 = e1; q.edge2 = e2; q.material = mat;
-        s.shapes.push_back(q);
-    };
-    quad({-1, 0, 1}, {2, 0, 0}, {0, 0, -2}, 0);   // floor
-    quad({-1, 2, -1}, {2, 0, 0}, {0, 0, 2}, 0);   // ceiling
-    quad({-1, 0, -1}, {2, 0, 0}, {0, 2, 0}, 0);   // back
-    quad({-1, 0, 1}, {2, 0, 0}, {0, 2, 0}, 0);    // front (closes the box behind the camera)
-    quad({-1, 0, 1}, {0, 0, -2}, {0, 2, 0}, 1);   // left
-    quad({1, 0, -1}, {0, 0, 2}, {0, 2, 0}, 2);    // right
+    s.shapes = {quad({-1, 0, 1}, {2, 0, 0}, {0, 0, -2}, 0),   // floor
+                quad({-1, 2, -1}, {2, 0, 0}, {0, 0, 2}, 0),   // ceiling
+                quad({-1, 0, -1}, {2, 0, 0}, {0, 2, 0}, 0),   // back
+                quad({-1, 0, 1}, {2, 0, 0}, {0, 2, 0}, 0),    // front (closes the box behind the camera)
+                quad({-1, 0, 1}, {0, 0, -2}, {0, 2, 0}, 1),   // left
+                quad({1, 0, -1}, {0, 0, 2}, {0, 2, 0}, 2)};   // right
     LightDesc l;
     l.type = LightType::Quad;
     l.corner = {-0.25f, 1.98f, -0.2f};
