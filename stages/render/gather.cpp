@@ -19,6 +19,27 @@ uint32_t gather_photons_at(const RenderContext& ctx, const VisiblePoint& vp, con
     const float wr = vp.weight.x * k, wg = vp.weight.y * k, wb = vp.weight.z * k;
     const Vec3 n = vp.normal;
     uint32_t found = 0;
+    // Deposits are staged in small groups: each one's accumulator is prefetched when found and
+    // added to when the group is full. With many frames a pixel's slots span tens of KiB that
+    // the last pass left in main memory, so a deposit's read-modify-write waits on a cache miss;
+    // staged, a group's misses overlap instead of queueing one behind the other. The adds keep
+    // the order in which photons were found, so every sum is the same as adding at once.
+    constexpr int kGroup = 32;
+    struct Deposit {
+        float* acc;
+        float r, g, b;
+    };
+    Deposit staged[kGroup];
+    int nstaged = 0;
+    auto flush = [&] {
+        for (int i = 0; i < nstaged; ++i) {
+            float* acc = staged[i].acc;
+            acc[0] += staged[i].r;
+            acc[1] += staged[i].g;
+            acc[2] += staged[i].b;
+        }
+        nstaged = 0;
+    };
     photons.for_each_near(vp.position.x, vp.position.y, vp.position.z, static_cast<float>(r2),
                           [&](const PhotonRecord& ph) {
         // cos(angle) < kSameSurface, without normalising the decoded normal.
@@ -30,10 +51,11 @@ uint32_t gather_photons_at(const RenderContext& ctx, const VisiblePoint& vp, con
         const int s = layout.slot_of_bucket(tl.bucket(ph.t_ns + vp.camera_ns));
         if (s < 0) return;
         float* acc = buffer.slot(pixel, s);
-        acc[0] += wr * ph.r;
-        acc[1] += wg * ph.g;
-        acc[2] += wb * ph.b;
+        __builtin_prefetch(acc, 1);
+        staged[nstaged++] = Deposit{acc, wr * ph.r, wg * ph.g, wb * ph.b};
+        if (nstaged == kGroup) flush();
     });
+    flush();
     if (found > 0) {
         const float alpha = ctx.scene.render.alpha;
         const double count = buffer.photon_count[pixel];
