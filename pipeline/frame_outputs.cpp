@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include <nlohmann/json.hpp>
+#include <tbb/task_group.h>
 
 #include "core/errors.h"
 #include "stages/output/atomic_file.h"
@@ -86,19 +87,30 @@ std::string FrameOutputs::exr_steady_path() const {
 
 void FrameOutputs::write_frame(int index, const std::vector<float>& rgb, bool on_disk) {
     const int w = settings_.width, h = settings_.height;
-    if (!settings_.exr_dir.empty() && !on_disk) {
-        std::map<std::string, std::string> meta = settings_.metadata;
-        double delta = (settings_.end_ns - settings_.start_ns) / std::max(1, settings_.frames);
-        meta["slowlight:frame"] = std::to_string(index);
-        meta["slowlight:frame_end_ns"] = std::to_string(settings_.start_ns + (index + 1) * delta);
-        seconds_exr += timed([&] { write_exr(exr_frame_path(index), w, h, rgb.data(), meta); });
+    // The linear EXR and the tone-mapped outputs read the same frame and nothing else: the EXR
+    // is written on another thread while this one tone-maps and encodes, so a run that asks
+    // for both waits for the slower of the two, not their sum.
+    tbb::task_group exr;
+    if (!settings_.exr_dir.empty() && !on_disk)
+        exr.run([&] {
+            std::map<std::string, std::string> meta = settings_.metadata;
+            double delta = (settings_.end_ns - settings_.start_ns) / std::max(1, settings_.frames);
+            meta["slowlight:frame"] = std::to_string(index);
+            meta["slowlight:frame_end_ns"] = std::to_string(settings_.start_ns + (index + 1) * delta);
+            seconds_exr += timed([&] { write_exr(exr_frame_path(index), w, h, rgb.data(), meta); });
+        });
+    try {
+        if (encoder_ || !settings_.png_dir.empty()) {
+            tone_map_srgb8(rgb.data(), w, h, exposure_.value_or(1.0), rgb8_.data());
+            if (!settings_.png_dir.empty())
+                seconds_png += timed([&] { write_png(numbered(settings_.png_dir, "png", index), w, h, rgb8_.data()); });
+            if (encoder_) seconds_video += timed([&] { encoder_->write_frame(rgb8_.data()); });
+        }
+    } catch (...) {
+        exr.wait();  // the task reads rgb and this frame's settings: let it end first
+        throw;
     }
-    if (encoder_ || !settings_.png_dir.empty()) {
-        tone_map_srgb8(rgb.data(), w, h, exposure_.value_or(1.0), rgb8_.data());
-        if (!settings_.png_dir.empty())
-            seconds_png += timed([&] { write_png(numbered(settings_.png_dir, "png", index), w, h, rgb8_.data()); });
-        if (encoder_) seconds_video += timed([&] { encoder_->write_frame(rgb8_.data()); });
-    }
+    exr.wait();  // rethrows the EXR writer's failure, if any
     ++frames_written;
 }
 
