@@ -126,9 +126,12 @@ struct PixelTracer {
             DirectLightSample s;
             float u1 = rng.uniform(), u2 = rng.uniform();
             if (!ctx.lights.sample_direct(i, p, nf, u1, u2, s)) continue;
+            const double t = s.distance / kSpeedOfLight + back_ns;
+            // A section that keeps no slot for this arrival (an early section, light arriving
+            // after its end) would drop it: no shadow ray is needed to find that out.
+            if (buffer.layout.slot_of_bucket(ctx.timeline.bucket(t)) < 0) continue;
             ++rays;
             if (ctx.geometry.occluded(origin, s.to_light, 0, s.distance * (1 - 1e-4f))) continue;
-            double t = s.distance / kSpeedOfLight + back_ns;
             Vec3 e = s.irradiance;
             if (medium) e *= medium->transmittance(origin, s.to_light, s.distance);
             deposit(buffer, ctx.timeline, pixel, t, f * e);
