@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "stages/render/huge_page_allocator.h"
 #include "stages/render/section_layout.h"
 
 namespace sl {
@@ -31,7 +32,7 @@ struct SectionBuffer {
     int slots;
     std::vector<double> radius2;        // per pixel, m^2
     std::vector<double> photon_count;   // per pixel: N of progressive photon mapping
-    std::vector<float> accum;           // [tile][slot][pixel in tile][rgb], sum over passes
+    std::vector<float, HugePageAllocator<float>> accum;  // [tile][slot][pixel in tile][rgb], sum over passes
     std::vector<float> ambient;         // [pixel][rgb] sum over passes; empty without ambient
     double max_radius = 0;              // the largest radius, for the photon grid's cell size
     double volume_radius2 = 0;          // the beam estimate's radius^2 this pass (with a medium)

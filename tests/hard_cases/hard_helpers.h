@@ -25,14 +25,10 @@ namespace sl::hard {
 
 using Image = std::vector<float>;
 
-inline size_t count_non_finite(const std::vector<float>& v) {
+template <class Values>
+size_t count_non_finite(const Values& v) {
     size_t n = 0;
-    for (float x : v) n += !std::isfinite(x);
-    return n;
-}
-inline size_t count_non_finite(const std::vector<double>& v) {
-    size_t n = 0;
-    for (double x : v) n += !std::isfinite(x);
+    for (auto x : v) n += !std::isfinite(x);
     return n;
 }
 
