@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cstring>
 
 #include "core/rng.h"
 #include "core/specular_path.h"
@@ -106,7 +107,10 @@ void PhotonMap::build(const RenderContext& ctx, const SectionLayout& layout, int
     const size_t nbatches = ctx.lights.has_emission() ? static_cast<size_t>((count + kBatch - 1) / kBatch) : 0;
     batches_.resize(nbatches);
     inv_cell_ = static_cast<float>(1.0 / std::max(cell_size, 1e-12));
-    tbb::parallel_for(size_t(0), nbatches, [&](size_t b) {
+    RankExchange* ex = ctx.exchange;
+    const size_t own_first = ex ? first_batch(nbatches, ex->rank(), ex->ranks()) : 0;
+    const size_t own_end = ex ? first_batch(nbatches, ex->rank() + 1, ex->ranks()) : nbatches;
+    tbb::parallel_for(own_first, own_end, [&](size_t b) {
         Batch& batch = batches_[b];
         batch.records.clear();
         batch.volume.clear();
@@ -117,16 +121,78 @@ void PhotonMap::build(const RenderContext& ctx, const SectionLayout& layout, int
         counters.photons.fetch_add(static_cast<uint64_t>(n), std::memory_order_relaxed);
         counters.rays.fetch_add(path.rays, std::memory_order_relaxed);
     });
-    size_t total = 0;
-    for (const Batch& v : batches_) total += v.records.size();
-    counters.stored.fetch_add(total, std::memory_order_relaxed);
+    size_t total = 0, own_volume = 0;
+    for (size_t b = own_first; b < own_end; ++b) {
+        total += batches_[b].records.size();
+        own_volume += batches_[b].volume.size();
+    }
+    counters.stored.fetch_add(total, std::memory_order_relaxed);  // this rank's own records
+    if (ex) {
+        exchange_batches(*ex, nbatches);
+        total = 0;
+        for (const Batch& v : batches_) total += v.records.size();
+    }
     sort_into_grid(total);
     if (volume) {
         std::vector<const std::vector<VolumePhoton>*> parts;
         parts.reserve(batches_.size());
         for (const Batch& v : batches_) parts.push_back(&v.volume);
         volume->build(parts);
-        counters.stored_volume.fetch_add(volume->size(), std::memory_order_relaxed);
+        counters.stored_volume.fetch_add(own_volume, std::memory_order_relaxed);
+    }
+}
+
+// One all-gather per pass. A rank's message: per own batch its record and volume-photon counts
+// (two uint32), then the records, then the volume photons, batch after batch. Unpacked in
+// batch order, every rank ends with the same batches, hence the same grid and the same BVH.
+void PhotonMap::exchange_batches(RankExchange& ex, size_t nbatches) {
+    const int n = ex.ranks(), me = ex.rank();
+    const size_t first = first_batch(nbatches, me, n), end = first_batch(nbatches, me + 1, n);
+    std::vector<char> mine;
+    {
+        size_t bytes = (end - first) * 2 * sizeof(uint32_t);
+        for (size_t b = first; b < end; ++b)
+            bytes += batches_[b].records.size() * sizeof(PhotonRecord) + batches_[b].volume.size() * sizeof(VolumePhoton);
+        mine.resize(bytes);
+        char* at = mine.data();
+        auto put = [&](const void* src, size_t len) {
+            if (len) std::memcpy(at, src, len);
+            at += len;
+        };
+        for (size_t b = first; b < end; ++b) {
+            const uint32_t counts[2] = {static_cast<uint32_t>(batches_[b].records.size()),
+                                        static_cast<uint32_t>(batches_[b].volume.size())};
+            put(counts, sizeof counts);
+        }
+        for (size_t b = first; b < end; ++b) put(batches_[b].records.data(), batches_[b].records.size() * sizeof(PhotonRecord));
+        for (size_t b = first; b < end; ++b) put(batches_[b].volume.data(), batches_[b].volume.size() * sizeof(VolumePhoton));
+    }
+    std::vector<uint64_t> counts;
+    ex.all_gather(Channel::Passes, mine.data(), mine.size(), exchanged_, counts);
+    const char* at = exchanged_.data();
+    for (int r = 0; r < n; ++r) {
+        const char* next = at + counts[static_cast<size_t>(r)];
+        const size_t f = first_batch(nbatches, r, n), e = first_batch(nbatches, r + 1, n);
+        if (r == me) {
+            at = next;
+            continue;
+        }
+        const char* data = at + (e - f) * 2 * sizeof(uint32_t);
+        for (size_t b = f; b < e; ++b) {
+            uint32_t c[2];
+            std::memcpy(c, at + (b - f) * sizeof c, sizeof c);
+            batches_[b].records.resize(c[0]);
+            if (c[0]) std::memcpy(batches_[b].records.data(), data, c[0] * sizeof(PhotonRecord));
+            data += c[0] * sizeof(PhotonRecord);
+        }
+        for (size_t b = f; b < e; ++b) {
+            uint32_t c[2];
+            std::memcpy(c, at + (b - f) * sizeof c, sizeof c);
+            batches_[b].volume.resize(c[1]);
+            if (c[1]) std::memcpy(batches_[b].volume.data(), data, c[1] * sizeof(VolumePhoton));
+            data += c[1] * sizeof(VolumePhoton);
+        }
+        at = next;
     }
 }
 

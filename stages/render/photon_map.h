@@ -47,6 +47,10 @@ public:
 
     static constexpr int kBatch = 4096;     // photon paths per task
     static constexpr int kPartitionBits = 6;  // the sort's first, parallel, radix step
+    // The batches rank `rank` of `ranks` traces: a contiguous share, [first, end).
+    static size_t first_batch(size_t nbatches, int rank, int ranks) {
+        return nbatches * static_cast<size_t>(rank) / static_cast<size_t>(ranks);
+    }
 
 private:
     uint32_t hash_cell(int32_t ix, int32_t iy, int32_t iz) const {
@@ -55,6 +59,9 @@ private:
     }
     int32_t cell(float v) const { return static_cast<int32_t>(std::floor(v * inv_cell_)); }
     void sort_into_grid(size_t total);
+    // With several ranks: each traced batches [first, end) of its own; afterwards every rank
+    // holds every batch, as one process would have traced them.
+    void exchange_batches(RankExchange& ex, size_t nbatches);
 
     struct Batch {
         std::vector<PhotonRecord> records;
@@ -70,6 +77,7 @@ private:
     std::vector<PhotonRecord> sorted_;  // records grouped by hash slot: the grid's cells
     std::vector<uint32_t> cell_start_;  // hash slot -> first record (size table + 1)
     std::vector<uint32_t> partition_start_;
+    std::vector<char> exchanged_;  // every rank's batches as received (kept: no reallocation per pass)
     uint32_t mask_ = 0;
     float inv_cell_ = 1;
 };

@@ -2,6 +2,7 @@
 
 #include <tbb/flow_graph.h>
 
+#include <atomic>
 #include <chrono>
 
 namespace sl {
@@ -18,7 +19,10 @@ SectionRun render_section(const RenderContext& ctx, const SectionLayout& layout,
                           const PassCallback& on_pass, const std::function<bool()>& cancelled) {
     namespace flow = tbb::flow;
     SectionRun run;
-    run.buffer = std::make_unique<SectionBuffer>(ctx.pixels(), layout, ctx.initial_radius, ctx.has_ambient());
+    RankExchange* ex = ctx.exchange;
+    run.buffer = ex ? std::make_unique<SectionBuffer>(PixelShare{ex->rank(), ex->ranks(), ctx.pixels()}, layout,
+                                                      ctx.initial_radius, ctx.has_ambient())
+                    : std::make_unique<SectionBuffer>(ctx.pixels(), layout, ctx.initial_radius, ctx.has_ambient());
     SectionBuffer& buffer = *run.buffer;
     PhotonMap photons;
     // Volume photons exist only with a medium: a vacuum scene allocates none of it.
@@ -30,8 +34,11 @@ SectionRun render_section(const RenderContext& ctx, const SectionLayout& layout,
 
     flow::graph g;
     int next_pass = 0;
+    // With several ranks, an interrupt stops every rank after the same pass: the ranks agree
+    // (one collective) before each pass, and only that agreement stops the source.
+    std::atomic<bool> agreed_stop{false};
     flow::input_node<int> source(g, [&](tbb::flow_control& fc) -> int {
-        if (next_pass >= passes || (cancelled && cancelled())) {
+        if (next_pass >= passes || (ex ? agreed_stop.load() : (cancelled && cancelled()))) {
             fc.stop();
             return 0;
         }
@@ -39,14 +46,24 @@ SectionRun render_section(const RenderContext& ctx, const SectionLayout& layout,
     });
     flow::limiter_node<int> one_pass_at_a_time(g, 1);
     flow::function_node<int, int> photon(g, flow::serial, [&](int pass) {
+        if (ex) {
+            if (agreed_stop.load()) return -1;
+            if (ex->max(Channel::Passes, cancelled && cancelled() ? 1 : 0) != 0) {
+                agreed_stop = true;
+                return -1;  // no rank runs this pass
+            }
+        }
         auto t0 = std::chrono::steady_clock::now();
         photons.build(ctx, layout, pass, photons_per_pass, 2 * buffer.max_radius, counters.photons, volume.get());
         run.times.photons += seconds_since(t0);
         return pass;
     });
     flow::function_node<int, flow::continue_msg> camera(g, flow::serial, [&](int pass) {
+        if (pass < 0) return flow::continue_msg();
         CameraPassTimes t = camera_pass(ctx, pass, PassPhotons{photons, volume.get(), photons_per_pass}, buffer,
                                         counters.camera);
+        // The next grid's cells fit the largest radius of any rank's pixels (max is exact).
+        if (ex) buffer.max_radius = ex->max(Channel::Passes, buffer.max_radius);
         run.times.camera += t.trace;
         run.times.gather += t.gather;
         run.times.volume += t.volume;
