@@ -303,10 +303,12 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameOutputs& outputs, const 
         stats.rays = totals[2];
         stats.interrupted = totals[3] > 0;
         stats.ranks = ex->ranks();
-        for (int c = 0; c < 2; ++c) {
-            stats.exchanged_sent[c] = ex->sent[c];
-            stats.exchanged_received[c] = ex->received[c];
-        }
+        const int passes_ch = static_cast<int>(Channel::Passes), photons_ch = static_cast<int>(Channel::Photons),
+                  frames_ch = static_cast<int>(Channel::Frames);
+        stats.exchanged_sent[0] = ex->sent[passes_ch] + ex->sent[photons_ch];
+        stats.exchanged_received[0] = ex->received[passes_ch] + ex->received[photons_ch];
+        stats.exchanged_sent[1] = ex->sent[frames_ch];
+        stats.exchanged_received[1] = ex->received[frames_ch];
     }
     return stats;
 }

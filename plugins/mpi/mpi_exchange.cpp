@@ -139,7 +139,7 @@ private:
     }
 
     int rank_ = 0, size_ = 1;
-    MPI_Comm comm_[2] = {MPI_COMM_NULL, MPI_COMM_NULL};
+    MPI_Comm comm_[sl::kChannels] = {MPI_COMM_NULL, MPI_COMM_NULL, MPI_COMM_NULL};
 };
 
 }  // namespace

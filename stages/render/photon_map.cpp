@@ -102,11 +102,16 @@ uint64_t PhotonMap::bytes() const {
 
 void PhotonMap::build(const RenderContext& ctx, const SectionLayout& layout, int pass, int64_t count,
                       double cell_size, PhotonTraceCounters& counters, VolumePhotonMap* volume) {
+    trace(ctx, layout, pass, count, counters, volume != nullptr);
+    finish(ctx, cell_size, counters, volume);
+}
+
+void PhotonMap::trace(const RenderContext& ctx, const SectionLayout& layout, int pass, int64_t count,
+                      PhotonTraceCounters& counters, bool with_volume) {
     const HomogeneousMedium* medium = ctx.medium ? &*ctx.medium : nullptr;
-    if (!medium) volume = nullptr;
+    const bool volume = medium && with_volume;
     const size_t nbatches = ctx.lights.has_emission() ? static_cast<size_t>((count + kBatch - 1) / kBatch) : 0;
     batches_.resize(nbatches);
-    inv_cell_ = static_cast<float>(1.0 / std::max(cell_size, 1e-12));
     RankExchange* ex = ctx.exchange;
     const size_t own_first = ex ? first_batch(nbatches, ex->rank(), ex->ranks()) : 0;
     const size_t own_end = ex ? first_batch(nbatches, ex->rank() + 1, ex->ranks()) : nbatches;
@@ -121,24 +126,28 @@ void PhotonMap::build(const RenderContext& ctx, const SectionLayout& layout, int
         counters.photons.fetch_add(static_cast<uint64_t>(n), std::memory_order_relaxed);
         counters.rays.fetch_add(path.rays, std::memory_order_relaxed);
     });
-    size_t total = 0, own_volume = 0;
+    size_t own = 0, own_volume = 0;
     for (size_t b = own_first; b < own_end; ++b) {
-        total += batches_[b].records.size();
+        own += batches_[b].records.size();
         own_volume += batches_[b].volume.size();
     }
-    counters.stored.fetch_add(total, std::memory_order_relaxed);  // this rank's own records
-    if (ex) {
-        exchange_batches(*ex, nbatches);
-        total = 0;
-        for (const Batch& v : batches_) total += v.records.size();
-    }
+    counters.stored.fetch_add(own, std::memory_order_relaxed);  // this rank's own records
+    if (volume) counters.stored_volume.fetch_add(own_volume, std::memory_order_relaxed);
+    if (ex) exchange_batches(*ex, nbatches);
+}
+
+void PhotonMap::finish(const RenderContext& ctx, double cell_size, PhotonTraceCounters& counters,
+                       VolumePhotonMap* volume) {
+    if (!ctx.medium) volume = nullptr;
+    inv_cell_ = static_cast<float>(1.0 / std::max(cell_size, 1e-12));
+    size_t total = 0;
+    for (const Batch& v : batches_) total += v.records.size();
     sort_into_grid(total);
     if (volume) {
         std::vector<const std::vector<VolumePhoton>*> parts;
         parts.reserve(batches_.size());
         for (const Batch& v : batches_) parts.push_back(&v.volume);
         volume->build(parts);
-        counters.stored_volume.fetch_add(own_volume, std::memory_order_relaxed);
     }
 }
 
@@ -168,7 +177,7 @@ void PhotonMap::exchange_batches(RankExchange& ex, size_t nbatches) {
         for (size_t b = first; b < end; ++b) put(batches_[b].volume.data(), batches_[b].volume.size() * sizeof(VolumePhoton));
     }
     std::vector<uint64_t> counts;
-    ex.all_gather(Channel::Passes, mine.data(), mine.size(), exchanged_, counts);
+    ex.all_gather(Channel::Photons, mine.data(), mine.size(), exchanged_, counts);
     const char* at = exchanged_.data();
     for (int r = 0; r < n; ++r) {
         const char* next = at + counts[static_cast<size_t>(r)];

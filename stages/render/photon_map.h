@@ -35,6 +35,12 @@ public:
     // With a medium in ctx, paths also scatter in it; its events go to `volume` when given.
     void build(const RenderContext& ctx, const SectionLayout& layout, int pass, int64_t count,
                double cell_size, PhotonTraceCounters& counters, VolumePhotonMap* volume = nullptr);
+    // build() in two steps: trace (this rank's batches, then, with ranks, the exchange) needs
+    // no radius and touches only the batches, so it may run while a camera pass reads the grid
+    // of the previous pass; finish sorts the batches into the grid (and the volume BVH).
+    void trace(const RenderContext& ctx, const SectionLayout& layout, int pass, int64_t count,
+               PhotonTraceCounters& counters, bool with_volume);
+    void finish(const RenderContext& ctx, double cell_size, PhotonTraceCounters& counters, VolumePhotonMap* volume);
 
     size_t size() const { return sorted_.size(); }
     // This pass's surface records (grid order), e.g. for flux bookkeeping in tests.

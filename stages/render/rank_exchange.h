@@ -38,10 +38,12 @@ struct PixelShare {
     }
 };
 
-// Two independent streams of collective calls, each made by one thread at a time in the same
-// order on every rank: the passes of the section being rendered, and the frames on their way
-// to rank 0 (which may be another section's, while the next one renders).
-enum class Channel { Passes = 0, Frames = 1 };
+// Independent streams of collective calls, each made by one thread at a time in the same order
+// on every rank: the passes of the section being rendered (radius, agreement to stop), the
+// photons of the next pass (exchanged while this pass's camera pass runs), and the frames on
+// their way to rank 0 (which may be another section's, while the next one renders).
+enum class Channel { Passes = 0, Frames = 1, Photons = 2 };
+inline constexpr int kChannels = 3;
 
 class RankExchange {
 public:
@@ -65,8 +67,8 @@ public:
     [[noreturn]] virtual void abort(int code) = 0;
 
     // Payload bytes this rank sent and received (rank 0's own share excluded), per channel.
-    uint64_t sent[2] = {0, 0}, received[2] = {0, 0};
-    uint64_t collectives[2] = {0, 0};
+    uint64_t sent[kChannels] = {}, received[kChannels] = {};
+    uint64_t collectives[kChannels] = {};
 };
 
 }  // namespace sl

@@ -2,8 +2,9 @@
 
 #include <tbb/flow_graph.h>
 
-#include <atomic>
 #include <chrono>
+
+#include "stages/render/passes_on_ranks.h"
 
 namespace sl {
 namespace {
@@ -32,13 +33,17 @@ SectionRun render_section(const RenderContext& ctx, const SectionLayout& layout,
         buffer.volume_radius2 = static_cast<double>(ctx.volume_radius) * ctx.volume_radius;
     }
 
+    if (ex) {  // several ranks: their own loop, which overlaps the photon exchange with work
+        run_passes_on_ranks(ctx, layout, passes, photons_per_pass, counters, buffer, photons, volume.get(), run.times,
+                            on_pass, cancelled);
+        run.photon_map_bytes = photons.bytes() + (volume ? volume->bytes() : 0);
+        return run;
+    }
+
     flow::graph g;
     int next_pass = 0;
-    // With several ranks, an interrupt stops every rank after the same pass: the ranks agree
-    // (one collective) before each pass, and only that agreement stops the source.
-    std::atomic<bool> agreed_stop{false};
     flow::input_node<int> source(g, [&](tbb::flow_control& fc) -> int {
-        if (next_pass >= passes || (ex ? agreed_stop.load() : (cancelled && cancelled()))) {
+        if (next_pass >= passes || (cancelled && cancelled())) {
             fc.stop();
             return 0;
         }
@@ -46,24 +51,14 @@ SectionRun render_section(const RenderContext& ctx, const SectionLayout& layout,
     });
     flow::limiter_node<int> one_pass_at_a_time(g, 1);
     flow::function_node<int, int> photon(g, flow::serial, [&](int pass) {
-        if (ex) {
-            if (agreed_stop.load()) return -1;
-            if (ex->max(Channel::Passes, cancelled && cancelled() ? 1 : 0) != 0) {
-                agreed_stop = true;
-                return -1;  // no rank runs this pass
-            }
-        }
         auto t0 = std::chrono::steady_clock::now();
         photons.build(ctx, layout, pass, photons_per_pass, 2 * buffer.max_radius, counters.photons, volume.get());
         run.times.photons += seconds_since(t0);
         return pass;
     });
     flow::function_node<int, flow::continue_msg> camera(g, flow::serial, [&](int pass) {
-        if (pass < 0) return flow::continue_msg();
         CameraPassTimes t = camera_pass(ctx, pass, PassPhotons{photons, volume.get(), photons_per_pass}, buffer,
                                         counters.camera);
-        // The next grid's cells fit the largest radius of any rank's pixels (max is exact).
-        if (ex) buffer.max_radius = ex->max(Channel::Passes, buffer.max_radius);
         run.times.camera += t.trace;
         run.times.gather += t.gather;
         run.times.volume += t.volume;
