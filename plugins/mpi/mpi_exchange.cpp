@@ -72,6 +72,10 @@ public:
         count(ch, 8, 8);
         return out;
     }
+    void max(sl::Channel ch, double* values, int n) override {
+        check(MPI_Allreduce(MPI_IN_PLACE, values, n, MPI_DOUBLE, MPI_MAX, comm(ch)), "MPI_Allreduce");
+        count(ch, 8u * static_cast<uint64_t>(n), 8u * static_cast<uint64_t>(n));
+    }
     int max(sl::Channel ch, int v) override {
         int out = v;
         check(MPI_Allreduce(&v, &out, 1, MPI_INT, MPI_MAX, comm(ch)), "MPI_Allreduce");

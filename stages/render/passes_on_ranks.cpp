@@ -3,6 +3,8 @@
 #include <tbb/task_group.h>
 
 #include <chrono>
+#include <cstdio>
+#include <cstdlib>
 
 namespace sl {
 namespace {
@@ -23,12 +25,19 @@ void run_passes_on_ranks(const RenderContext& ctx, const SectionLayout& layout, 
         photons.trace(ctx, layout, pass, photons_per_pass, counters.photons, volume != nullptr);
         trace_seconds += seconds_since(t0);
     };
-    if (passes > 0) trace(0);
+    // One reduction per pass, after it: the largest radius of any rank's pixels (the next
+    // grid's cell size; max is exact) and whether any rank was interrupted, so that every rank
+    // stops before the same pass.
+    auto agree = [&] {
+        double v[2] = {buffer.max_radius, cancelled && cancelled() ? 1.0 : 0.0};
+        ex.max(Channel::Passes, v, 2);
+        buffer.max_radius = v[0];
+        return v[1] == 0;
+    };
+    if (passes <= 0 || !agree()) return;
+    trace(0);
     tbb::task_group next;
     for (int pass = 0; pass < passes; ++pass) {
-        // An interrupt stops every rank before the same pass (pass k's photons, already
-        // exchanged, are simply not used).
-        if (ex.max(Channel::Passes, cancelled && cancelled() ? 1 : 0) != 0) break;
         auto t0 = std::chrono::steady_clock::now();
         photons.finish(ctx, 2 * buffer.max_radius, counters.photons, volume);
         times.photons += seconds_since(t0);
@@ -40,9 +49,9 @@ void run_passes_on_ranks(const RenderContext& ctx, const SectionLayout& layout, 
         times.volume += t.volume;
         times.volume_cpu += t.volume_cpu;
         next.wait();
-        // The next grid's cells fit the largest radius of any rank's pixels (max is exact).
-        buffer.max_radius = ex.max(Channel::Passes, buffer.max_radius);
+        const bool go_on = agree();
         if (on_pass) on_pass(buffer.passes_done);
+        if (!go_on) break;  // the next pass's photons, already exchanged, are not used
     }
     times.photons += trace_seconds;
 }

@@ -58,6 +58,7 @@ public:
     virtual void gather(Channel c, const void* mine, uint64_t bytes, std::vector<char>& all,
                         std::vector<uint64_t>& counts) = 0;
     virtual double max(Channel c, double v) = 0;
+    virtual void max(Channel c, double* values, int n) = 0;  // element-wise, in place
     virtual int max(Channel c, int v) = 0;
     virtual void sum(Channel c, uint64_t* values, int n) = 0;
     // Rank 0's value, on every rank.

@@ -32,6 +32,7 @@ inline ProgramResult run_ranks(int n, const std::vector<std::string>& args, cons
     ::setenv("OMPI_MCA_btl_vader_single_copy_mechanism", "none", 1);
     ::setenv("OMPI_MCA_rmaps_base_oversubscribe", "1", 1);
     ::setenv("OMPI_MCA_hwloc_base_binding_policy", "none", 1);
+    ::setenv("OMPI_MCA_mpi_yield_when_idle", "1", 1);  // more ranks than cores: waiting ones yield
     std::vector<std::string> all = {"-np", std::to_string(n), binary()};
     all.insert(all.end(), args.begin(), args.end());
     return run_program(all, stdout_path, timeout_seconds, find_mpirun());
