@@ -19,7 +19,7 @@ wall() { /usr/bin/time -f %e -o "$out/t" "$@" >/dev/null 2>"$out/err" || { cat "
 a=(); b=()
 for ((i = 0; i < rounds; ++i)); do
   a+=("$(wall "$bin" "${render[@]}" --threads 2 --stats "$out/a.json")")
-  b+=("$(wall mpirun -np 2 --bind-to core "$bin" "${render[@]}" --threads 1 --stats "$out/b.json")")
+  b+=("$(wall mpirun -np 2 --bind-to none "$bin" "${render[@]}" --threads 1 --stats "$out/b.json")")
   echo "round $((i + 1)): 1 rank x 2 threads ${a[-1]} s, 2 ranks x 1 thread ${b[-1]} s" >&2
 done
 python3 - "$out/b.json" "${a[*]}" "${b[*]}" <<'PY'

@@ -40,6 +40,7 @@ void run_passes_on_ranks(const RenderContext& ctx, const SectionLayout& layout, 
     for (int pass = 0; pass < passes; ++pass) {
         auto t0 = std::chrono::steady_clock::now();
         photons.finish(ctx, 2 * buffer.max_radius, counters.photons, volume);
+        times.grid += seconds_since(t0);
         times.photons += seconds_since(t0);
         if (pass + 1 < passes) next.run([&trace, pass] { trace(pass + 1); });
         CameraPassTimes t = camera_pass(ctx, pass, PassPhotons{photons, volume, photons_per_pass}, buffer,

@@ -178,31 +178,43 @@ void PhotonMap::exchange_batches(RankExchange& ex, size_t nbatches) {
     }
     std::vector<uint64_t> counts;
     ex.all_gather(Channel::Photons, mine.data(), mine.size(), exchanged_, counts);
+    // Where each other rank's batch starts in the message (a cheap scan), then the copies, in
+    // parallel: every rank makes them, so they must not be one thread's work.
+    struct Source {
+        const char* records;
+        const char* volume;
+        uint32_t n_records, n_volume;
+    };
+    std::vector<Source> from(nbatches, Source{nullptr, nullptr, 0, 0});
     const char* at = exchanged_.data();
     for (int r = 0; r < n; ++r) {
         const char* next = at + counts[static_cast<size_t>(r)];
         const size_t f = first_batch(nbatches, r, n), e = first_batch(nbatches, r + 1, n);
-        if (r == me) {
-            at = next;
-            continue;
-        }
-        const char* data = at + (e - f) * 2 * sizeof(uint32_t);
-        for (size_t b = f; b < e; ++b) {
-            uint32_t c[2];
-            std::memcpy(c, at + (b - f) * sizeof c, sizeof c);
-            batches_[b].records.resize(c[0]);
-            if (c[0]) std::memcpy(batches_[b].records.data(), data, c[0] * sizeof(PhotonRecord));
-            data += c[0] * sizeof(PhotonRecord);
-        }
-        for (size_t b = f; b < e; ++b) {
-            uint32_t c[2];
-            std::memcpy(c, at + (b - f) * sizeof c, sizeof c);
-            batches_[b].volume.resize(c[1]);
-            if (c[1]) std::memcpy(batches_[b].volume.data(), data, c[1] * sizeof(VolumePhoton));
-            data += c[1] * sizeof(VolumePhoton);
+        if (r != me) {
+            const char* data = at + (e - f) * 2 * sizeof(uint32_t);
+            for (size_t b = f; b < e; ++b) {
+                uint32_t c[2];
+                std::memcpy(c, at + (b - f) * sizeof c, sizeof c);
+                from[b].records = data;
+                from[b].n_records = c[0];
+                from[b].n_volume = c[1];
+                data += c[0] * sizeof(PhotonRecord);
+            }
+            for (size_t b = f; b < e; ++b) {
+                from[b].volume = data;
+                data += from[b].n_volume * sizeof(VolumePhoton);
+            }
         }
         at = next;
     }
+    tbb::parallel_for(size_t(0), nbatches, [&](size_t b) {
+        const Source& src = from[b];
+        if (!src.records) return;  // this rank's own
+        batches_[b].records.resize(src.n_records);
+        if (src.n_records) std::memcpy(batches_[b].records.data(), src.records, src.n_records * sizeof(PhotonRecord));
+        batches_[b].volume.resize(src.n_volume);
+        if (src.n_volume) std::memcpy(batches_[b].volume.data(), src.volume, src.n_volume * sizeof(VolumePhoton));
+    });
 }
 
 // A stable two-step counting sort by hash slot that runs in parallel and gives the same order
