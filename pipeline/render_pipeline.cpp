@@ -310,6 +310,7 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameOutputs& outputs, const 
         stats.exchanged_received[0] = ex->received[passes_ch] + ex->received[photons_ch];
         stats.exchanged_sent[1] = ex->sent[frames_ch];
         stats.exchanged_received[1] = ex->received[frames_ch];
+        stats.photon_transfer_seconds = ex->transfer_seconds[photons_ch];
     }
     return stats;
 }

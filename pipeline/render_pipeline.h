@@ -32,6 +32,7 @@ struct PipelineStats {
     // (0: the passes' photons and reductions, 1: frames to rank 0), counted before the totals.
     int ranks = 1;
     uint64_t exchanged_sent[2] = {0, 0}, exchanged_received[2] = {0, 0};
+    double photon_transfer_seconds = 0;  // rank 0's time moving photon records (not waiting)
 };
 
 // (section, passes done in it) after every pass.

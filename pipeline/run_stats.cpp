@@ -56,7 +56,8 @@ void write_stats_json(const std::string& path, const RunSummary& s) {
                                 {"passes_sent", p.exchanged_sent[0]},
                                 {"passes", p.passes_run},
                                 {"frames_received", p.exchanged_received[1]},
-                                {"photon_grid_seconds", p.render.grid}};  // rank 0's, part of photon_passes
+                                {"photon_grid_seconds", p.render.grid},  // rank 0's, part of photon_passes
+                                {"photon_transfer_seconds", p.photon_transfer_seconds}};
     // A device or FIFO (/dev/stdout, a pipe) is written in place, never replaced by a rename.
     std::error_code ec;
     auto type = std::filesystem::status(path, ec).type();

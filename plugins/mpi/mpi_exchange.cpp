@@ -42,8 +42,10 @@ public:
         std::vector<int> n, at;
         const uint64_t total = displacements(counts, n, at);
         all.resize(total);
+        const double t0 = MPI_Wtime();
         check(MPI_Allgatherv(mine, to_int(bytes), MPI_BYTE, all.data(), n.data(), at.data(), MPI_BYTE, c),
               "MPI_Allgatherv");
+        transfer_seconds[static_cast<int>(ch)] += MPI_Wtime() - t0;
         count(ch, bytes * static_cast<uint64_t>(size_ - 1), total - bytes);
     }
 
@@ -60,8 +62,10 @@ public:
         } else {
             all.clear();
         }
+        const double t0 = MPI_Wtime();
         check(MPI_Gatherv(mine, to_int(bytes), MPI_BYTE, all.data(), n.data(), at.data(), MPI_BYTE, 0, c),
               "MPI_Gatherv");
+        transfer_seconds[static_cast<int>(ch)] += MPI_Wtime() - t0;
         if (rank_ == 0) count(ch, 0, total - bytes);
         else count(ch, bytes, 0);
     }

@@ -70,6 +70,9 @@ public:
     // Payload bytes this rank sent and received (rank 0's own share excluded), per channel.
     uint64_t sent[kChannels] = {}, received[kChannels] = {};
     uint64_t collectives[kChannels] = {};
+    // Seconds in the data step of (all-)gathers, after the sizes' exchange has lined the ranks
+    // up: the transfer itself, without waiting for a slower rank.
+    double transfer_seconds[kChannels] = {};
 };
 
 }  // namespace sl
