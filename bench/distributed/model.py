@@ -8,7 +8,6 @@ cam_per_px = 7.5 / 24 / (192 * 192)      # s per pixel per pass per core (camera
 trace_per_ph = 10.8 / 24 / 200000        # s per photon path per core
 rec_per_ph = 1.96                         # records per photon path (Cornell box, 8 bounces)
 sort_per_rec = 1.39 / 24 / (rec_per_ph * 200000)  # s per record per core, replicated on every rank
-copy_bw = 20e9                            # B/s a node copies received records into its batches
 cores = 32
 print(f"cam {cam_per_px*1e6:.2f} us/px, trace {trace_per_ph*1e6:.2f} us/photon, sort {sort_per_rec*1e9:.0f} ns/record")
 for P in (500_000, 1_000_000):
@@ -20,7 +19,7 @@ for P in (500_000, 1_000_000):
         recv = map_bytes * (N - 1) / N
         divided = (px * cam_per_px + P * trace_per_ph) / (N * cores)
         camera = px * cam_per_px / (N * cores)
-        rep = rec * sort_per_rec / cores + recv / copy_bw
+        rep = rec * sort_per_rec / cores  # sorting the whole map (received records are sorted in place)
         for gbit in (10, 100):
             comm = recv / (gbit * 1e9 / 8)
             exposed = max(0.0, comm - camera)  # the exchange runs beside the camera pass

@@ -92,7 +92,7 @@ struct PhotonPath {
 uint64_t PhotonMap::bytes() const {
     uint64_t b = sorted_.capacity() * sizeof(PhotonRecord) +
                  (staged_slot_.capacity() + staged_index_.capacity() + cell_start_.capacity() +
-                  partition_start_.capacity()) * sizeof(uint32_t);
+                  partition_start_.capacity()) * sizeof(uint32_t) + exchanged_.capacity();
     for (const Batch& v : batches_)
         b += v.records.capacity() * sizeof(PhotonRecord) +
              (v.partition_begin.capacity() + v.partition_end.capacity()) * 4 +
@@ -118,6 +118,7 @@ void PhotonMap::trace(const RenderContext& ctx, const SectionLayout& layout, int
     tbb::parallel_for(own_first, own_end, [&](size_t b) {
         Batch& batch = batches_[b];
         batch.records.clear();
+        batch.received = nullptr;
         batch.volume.clear();
         Rng rng(ctx.scene.render.seed, 2, static_cast<uint64_t>(pass), b);
         PhotonPath path{ctx, layout, batch.records, medium, volume ? &batch.volume : nullptr};
@@ -141,7 +142,7 @@ void PhotonMap::finish(const RenderContext& ctx, double cell_size, PhotonTraceCo
     if (!ctx.medium) volume = nullptr;
     inv_cell_ = static_cast<float>(1.0 / std::max(cell_size, 1e-12));
     size_t total = 0;
-    for (const Batch& v : batches_) total += v.records.size();
+    for (const Batch& v : batches_) total += v.count();
     sort_into_grid(total);
     if (volume) {
         std::vector<const std::vector<VolumePhoton>*> parts;
@@ -178,10 +179,11 @@ void PhotonMap::exchange_batches(RankExchange& ex, size_t nbatches) {
     }
     std::vector<uint64_t> counts;
     ex.all_gather(Channel::Photons, mine.data(), mine.size(), exchanged_, counts);
-    // Where each other rank's batch starts in the message (a cheap scan), then the copies, in
-    // parallel: every rank makes them, so they must not be one thread's work.
+    // Where each other rank's batch starts in the message (a cheap scan). Its records are then
+    // sorted from there, in place; its volume photons are copied into the batch (in parallel:
+    // every rank makes these copies, so they must not be one thread's work).
     struct Source {
-        const char* records;
+        const PhotonRecord* records;
         const char* volume;
         uint32_t n_records, n_volume;
     };
@@ -195,7 +197,7 @@ void PhotonMap::exchange_batches(RankExchange& ex, size_t nbatches) {
             for (size_t b = f; b < e; ++b) {
                 uint32_t c[2];
                 std::memcpy(c, at + (b - f) * sizeof c, sizeof c);
-                from[b].records = data;
+                from[b].records = reinterpret_cast<const PhotonRecord*>(data);  // 8-byte aligned
                 from[b].n_records = c[0];
                 from[b].n_volume = c[1];
                 data += c[0] * sizeof(PhotonRecord);
@@ -210,8 +212,8 @@ void PhotonMap::exchange_batches(RankExchange& ex, size_t nbatches) {
     tbb::parallel_for(size_t(0), nbatches, [&](size_t b) {
         const Source& src = from[b];
         if (!src.records) return;  // this rank's own
-        batches_[b].records.resize(src.n_records);
-        if (src.n_records) std::memcpy(batches_[b].records.data(), src.records, src.n_records * sizeof(PhotonRecord));
+        batches_[b].received = src.records;
+        batches_[b].received_count = src.n_records;
         batches_[b].volume.resize(src.n_volume);
         if (src.n_volume) std::memcpy(batches_[b].volume.data(), src.volume, src.n_volume * sizeof(VolumePhoton));
     });
@@ -231,7 +233,8 @@ void PhotonMap::sort_into_grid(size_t total) {
     tbb::parallel_for(size_t(0), batches_.size(), [&](size_t b) {
         Batch& batch = batches_[b];
         batch.partition_begin.assign(parts, 0);
-        for (const PhotonRecord& p : batch.records) ++batch.partition_begin[slot_of(p) >> shift];
+        const PhotonRecord* records = batch.data();
+        for (size_t i = 0, n = batch.count(); i < n; ++i) ++batch.partition_begin[slot_of(records[i]) >> shift];
     });
     partition_start_.assign(parts + 1, 0);
     uint32_t offset = 0;
@@ -249,8 +252,9 @@ void PhotonMap::sort_into_grid(size_t total) {
     tbb::parallel_for(size_t(0), batches_.size(), [&](size_t b) {
         Batch& batch = batches_[b];
         batch.partition_end = batch.partition_begin;  // write cursors, then the ends
-        for (size_t i = 0; i < batch.records.size(); ++i) {
-            const uint32_t slot = slot_of(batch.records[i]);
+        const PhotonRecord* records = batch.data();
+        for (size_t i = 0, n = batch.count(); i < n; ++i) {
+            const uint32_t slot = slot_of(records[i]);
             const uint32_t dst = batch.partition_end[slot >> shift]++;
             staged_slot_[dst] = slot;
             staged_index_[dst] = static_cast<uint32_t>(i);
@@ -273,8 +277,9 @@ void PhotonMap::sort_into_grid(size_t total) {
         // Fill with start[] as the cursor; afterwards start[s] is slot s's end, so shift it back.
         // The partition's staged entries are the batches' ranges, one after another.
         for (const Batch& batch : batches_) {
+            const PhotonRecord* records = batch.data();
             for (uint32_t i = batch.partition_begin[part], e = batch.partition_end[part]; i < e; ++i)
-                sorted_[start[staged_slot_[i] - first_slot]++] = batch.records[staged_index_[i]];
+                sorted_[start[staged_slot_[i] - first_slot]++] = records[staged_index_[i]];
         }
         for (uint32_t s = slots - 1; s > 0; --s) start[s] = start[s - 1];
         start[0] = lo;

@@ -70,7 +70,13 @@ private:
     void exchange_batches(RankExchange& ex, size_t nbatches);
 
     struct Batch {
-        std::vector<PhotonRecord> records;
+        std::vector<PhotonRecord> records;  // traced by this process
+        // Or, with ranks, another rank's records, read in place in the exchange buffer (every
+        // rank sorts every record: a copy less is work that does not shrink with the ranks).
+        const PhotonRecord* received = nullptr;
+        uint32_t received_count = 0;
+        const PhotonRecord* data() const { return received ? received : records.data(); }
+        size_t count() const { return received ? received_count : records.size(); }
         std::vector<uint32_t> partition_begin;  // where this batch's records of each partition
         std::vector<uint32_t> partition_end;    // go in the staged arrays
         std::vector<VolumePhoton> volume;  // medium scattering events (with a medium only)
