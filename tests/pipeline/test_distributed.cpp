@@ -147,3 +147,21 @@ TEST_F(Distributed, BadInputIsReportedOnceWithStatusTwo) {
 }
 
 }  // namespace sl::test
+
+namespace sl::test {
+
+// Without a launcher, a render never loads MPI: the dynamic loader's own list of the libraries
+// it opened (LD_DEBUG=files) names TBB, and no MPI library or plugin.
+TEST(PlainRun, NeverLoadsMpi) {
+    ScratchDir dir{"sl_plain"};
+    ::setenv("LD_DEBUG", "files", 1);
+    ProgramResult r = run_program({"render", "--width", "16", "--height", "16", "--frames", "2", "--passes", "1",
+                                   "--photons", "1000", "--no-progress", "--exr-dir", dir.file("exr")});
+    ::unsetenv("LD_DEBUG");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    ASSERT_NE(r.err.find("libtbb"), std::string::npos) << "the loader listed nothing:\n" << r.err.substr(0, 2000);
+    EXPECT_EQ(r.err.find("libmpi"), std::string::npos);
+    EXPECT_EQ(r.err.find("libslowlight_mpi"), std::string::npos);
+}
+
+}  // namespace sl::test
