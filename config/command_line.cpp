@@ -133,6 +133,11 @@ const Option kOptions[] = {
      [](RunOptions& r, std::string_view f, std::string_view v) {
          r.threads = int_value(f, v, 0, limits::kMaxThreads);
      }},
+    {"--ranks", "", "N",
+     "info: memory per rank when N MPI ranks share the render (mpirun -np N sets it for render)",
+     [](RunOptions& r, std::string_view f, std::string_view v) {
+         r.ranks = int_value(f, v, 1, 1 << 20);
+     }},
     {"--stats", "", "FILE.json", "write machine-readable run statistics to FILE.json",
      [](RunOptions& r, std::string_view f, std::string_view v) {
          r.stats_path = path_value(f, v);

@@ -31,6 +31,7 @@ struct RunOptions {
     std::optional<double> exposure;  // linear multiplier; default from the steady image
     Strategy strategy = Strategy::Single;
     int threads = 0;  // 0: all cores
+    int ranks = 0;    // --ranks (info: plan for N MPI ranks); under MPI, the ranks running
     bool progress = true;  // shown only when stderr is a terminal
     RenderOverrides overrides;
 };

@@ -14,6 +14,8 @@
 #include "config/command_line.h"
 #include "config/parse_scene.h"
 #include "core/errors.h"
+#include "pipeline/distributed/mpi_launch.h"
+#include "pipeline/distributed/rank_start.h"
 #include "pipeline/frame_outputs.h"
 #include "pipeline/memory_plan.h"
 #include "pipeline/progress.h"
@@ -31,6 +33,32 @@ std::atomic<bool> g_cancel{false};
 
 extern "C" void on_signal(int) {
     if (g_cancel.exchange(true)) _exit(130);  // a second signal: stop at once
+}
+
+// Several ranks (MPI): the exchange, and whether the ranks agreed to start rendering (before
+// that, a failure is agreed on; after it, a failing rank ends the whole job).
+struct Ranks {
+    RankExchange* ex = nullptr;
+    bool concurrent_channels = false;
+    bool started = false;
+    bool root() const { return !ex || ex->rank() == 0; }
+};
+Ranks g_ranks;
+
+// Under MPI the launcher stops every rank with SIGTERM when one of them died: say so, from
+// rank 0, as the job's one error line (a rank blocked in a collective would never get to it).
+extern "C" void on_launcher_signal(int sig) {
+    if (!g_ranks.started || g_cancel.load()) {
+        if (g_cancel.exchange(true)) _exit(130);
+        return;
+    }
+    if (g_ranks.root()) {
+        const char msg[] = "error: the MPI launcher stopped this render (another rank has died or was killed); "
+                           "its outputs are incomplete\n";
+        ssize_t ignored = write(STDERR_FILENO, msg, sizeof msg - 1);
+        (void)ignored;
+    }
+    _exit(128 + sig);
 }
 
 // Refuse up front what could only end in running out of memory.
@@ -51,16 +79,33 @@ SceneDesc load_scene(const RunOptions& o) {
     return scene;
 }
 
-int render(const RunOptions& o) {
+int render(RunOptions o) {
     auto t0 = std::chrono::steady_clock::now();
+    RankExchange* ex = g_ranks.ex;
+    const bool root = g_ranks.root();
+    if (ex) {
+        if (o.ranks > 0 && o.ranks != ex->ranks())
+            throw InputError("command line: --ranks " + std::to_string(o.ranks) + ": this render runs on " +
+                             std::to_string(ex->ranks()) + " MPI ranks");
+        // Resuming needs the checkpoint of every rank's pixels: not yet.
+        if (o.resume) throw InputError("command line: --resume is not supported yet when several MPI ranks render");
+        o.ranks = ex->ranks();
+    } else if (o.ranks > 1) {
+        throw InputError("command line: --ranks " + std::to_string(o.ranks) +
+                         ": a render on several ranks is started by an MPI launcher (mpirun -np N slowlight render ...); "
+                         "--ranks is for info");
+    }
     SceneDesc scene = load_scene(o);
     MemoryPlan plan = plan_memory(scene, o);
+    // Rendering one section while rank 0 writes another uses both channels at once.
+    if (ex && !g_ranks.concurrent_channels) plan.overlap = false;
     check_fits_machine(plan);
     if (o.resume && !o.cube_path.empty())
         throw InputError("command line: --cube cannot be combined with --resume (the cube needs every section)");
     const std::string fingerprint = settings_fingerprint(scene, plan.sections, o.strategy);
 
     RenderContext ctx(scene);  // meshes and the BVH: input errors here come before any output exists
+    ctx.exchange = ex;
 
     OutputSettings out;
     out.video = o.output;
@@ -76,24 +121,38 @@ int render(const RunOptions& o) {
     out.exposure = o.exposure;
     out.metadata = {{"slowlight:version", SLOWLIGHT_VERSION}, {"slowlight:scene", scene.source},
                     {kFingerprintKey, fingerprint}};
-    FrameOutputs outputs(out);  // every output is checked before rendering starts
+    // Only rank 0 writes; the others assemble their pixels and send them to it.
+    FrameOutputs outputs(root ? out : OutputSettings{});  // every output is checked before rendering starts
 
     PipelineJob job;
     job.ctx = &ctx;
     job.plan = plan;
     job.strategy = o.strategy;
     if (o.resume) job.on_disk = sections_on_disk(outputs, plan_sections(ctx, plan, o.strategy), fingerprint);
-    std::fprintf(stderr, "slowlight: %dx%d, %d frames, %d passes x %lld photons, %d section%s%s; buckets %s per section, about %s fixed\n",
-                 ctx.width, ctx.height, scene.time.frames, scene.render.passes,
-                 static_cast<long long>(scene.render.photons_per_pass), plan.sections, plan.sections > 1 ? "s" : "",
-                 plan.overlap ? " (two alive: encode while rendering)" : "",
-                 format_bytes(plan.buffer_bytes_per_section).c_str(), format_bytes(plan.fixed_overhead_bytes).c_str());
+    if (ex) {  // from here on every rank renders, or none does
+        const int status = agree_to_start(*ex, 0, "");
+        if (status != 0) return status;
+        g_ranks.started = true;
+    }
+    if (root)
+        std::fprintf(stderr, "slowlight: %dx%d, %d frames, %d passes x %lld photons, %d section%s%s; buckets %s per section%s, about %s fixed\n",
+                     ctx.width, ctx.height, scene.time.frames, scene.render.passes,
+                     static_cast<long long>(scene.render.photons_per_pass), plan.sections, plan.sections > 1 ? "s" : "",
+                     plan.overlap ? " (two alive: encode while rendering)" : "",
+                     format_bytes(plan.buffer_bytes_per_section).c_str(),
+                     ex ? (" per rank on " + std::to_string(ex->ranks()) + " MPI ranks").c_str() : "",
+                     format_bytes(plan.fixed_overhead_bytes).c_str());
     double setup = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
     std::signal(SIGINT, on_signal);
-    std::signal(SIGTERM, on_signal);
-    ProgressBar bar(o.progress, plan.sections, scene.render.passes);
+    std::signal(SIGTERM, ex ? on_launcher_signal : on_signal);
+    ProgressBar bar(o.progress && root, plan.sections, scene.render.passes);
     PipelineStats stats = run_pipeline(job, outputs, [&](int s, int p) { bar.update(s, p); }, g_cancel);
+    if (ex && root)
+        std::fprintf(stderr, "slowlight: %d MPI ranks; rank 0 received %s with the passes (%s per pass per rank) and %s of frames\n",
+                     ex->ranks(), format_bytes(stats.exchanged_received[0]).c_str(),
+                     format_bytes(stats.exchanged_received[0] / static_cast<uint64_t>(std::max(1, stats.passes_run))).c_str(),
+                     format_bytes(stats.exchanged_received[1]).c_str());
     if (stats.sections_resumed > 0)
         std::fprintf(stderr, "slowlight: resumed %d of %d sections from %s\n", stats.sections_resumed, plan.sections,
                      o.exr_dir.c_str());
@@ -102,7 +161,7 @@ int render(const RunOptions& o) {
     outputs.finish();
     double output_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - tf).count();
 
-    if (!o.stats_path.empty()) {
+    if (!o.stats_path.empty() && root) {
         RunSummary summary;
         summary.scene = &scene;
         summary.plan = plan;
@@ -116,7 +175,7 @@ int render(const RunOptions& o) {
         write_stats_json(o.stats_path, summary);
     }
     if (stats.interrupted) {
-        std::fprintf(stderr, "slowlight: interrupted; %lld frames written\n", static_cast<long long>(outputs.frames_written));
+        if (root) std::fprintf(stderr, "slowlight: interrupted; %lld frames written\n", static_cast<long long>(outputs.frames_written));
         return 130;
     }
     return 0;
@@ -125,17 +184,42 @@ int render(const RunOptions& o) {
 }  // namespace
 
 int run_cli(int argc, char** argv) {
+    // Under an MPI launcher with several processes: MPI, through its plugin (else nothing).
+    DistributedStart dist = start_distributed(argc, argv);
+    if (!dist.error.empty()) {
+        std::fprintf(stderr, "error: %s\n", dist.error.c_str());
+        return 1;
+    }
+    g_ranks.ex = dist.exchange.get();
+    g_ranks.concurrent_channels = dist.concurrent_channels;
+    // A failure: one line and the exit status; under MPI agreed with the other ranks before the
+    // render starts (rank 0 prints it), and after that the failing rank ends the job.
+    auto fail = [&](int code, const std::string& message) -> int {
+        if (!g_ranks.ex) {
+            std::fprintf(stderr, "error: %s\n", message.c_str());
+            return code;
+        }
+        if (!g_ranks.started) return agree_to_start(*g_ranks.ex, code, message);
+        std::fprintf(stderr, "error: rank %d: %s\n", g_ranks.ex->rank(), message.c_str());
+        g_ranks.ex->abort(code);
+        return code;  // not reached: abort ends the process
+    };
     try {
         RunOptions o = parse_command_line(argc, argv);
+        const bool quiet = !g_ranks.root();  // one answer from the job, rank 0's
         switch (o.command) {
-        case RunOptions::Command::Help: std::cout << usage_text(); return 0;
-        case RunOptions::Command::Version: std::cout << "slowlight " << SLOWLIGHT_VERSION << "\n"; return 0;
+        case RunOptions::Command::Help: if (!quiet) std::cout << usage_text(); return 0;
+        case RunOptions::Command::Version:
+            if (!quiet) std::cout << "slowlight " << SLOWLIGHT_VERSION << "\n";
+            return 0;
         case RunOptions::Command::Info: {
             SceneDesc scene = load_scene(o);
-            print_scene_info(std::cout, scene);
+            if (!quiet) print_scene_info(std::cout, scene, g_ranks.ex ? g_ranks.ex->ranks() : std::max(1, o.ranks));
             return 0;
         }
-        case RunOptions::Command::Retime: break;
+        case RunOptions::Command::Retime:
+            if (g_ranks.ex) throw InputError("command line: retime runs in one process; start it without mpirun");
+            break;
         case RunOptions::Command::Render: break;
         }
         std::unique_ptr<tbb::global_control> threads;
@@ -144,14 +228,11 @@ int run_cli(int argc, char** argv) {
         if (o.command == RunOptions::Command::Retime) return retime(o);
         return render(o);
     } catch (const InputError& e) {
-        std::fprintf(stderr, "error: %s\n", e.what());
-        return 2;
+        return fail(2, e.what());
     } catch (const std::bad_alloc&) {
-        std::fprintf(stderr, "error: out of memory\n");
-        return 1;
+        return fail(1, "out of memory");
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "error: %s\n", e.what());
-        return 1;
+        return fail(1, e.what());
     }
 }
 

@@ -28,10 +28,11 @@ static size_t pixel_count(const SceneDesc& s) {
     return static_cast<size_t>(s.camera.width) * static_cast<size_t>(s.camera.height);
 }
 
-uint64_t section_buffer_bytes(const SceneDesc& scene, int sections) {
+uint64_t section_buffer_bytes(const SceneDesc& scene, int sections, int ranks) {
     const Timeline tl{scene.time.start_ns, scene.time.end_ns, scene.time.frames};
     const int slots = max_section_slots(tl, scene.emission.mode, pulse_bucket_count(scene), sections);
-    return SectionBuffer::bytes_needed(pixel_count(scene), slots, !is_black(scene.render.ambient));
+    const size_t pixels = PixelShare{0, std::max(1, ranks), pixel_count(scene)}.count();  // rank 0 has the most
+    return SectionBuffer::bytes_needed(pixels, slots, !is_black(scene.render.ambient));
 }
 
 uint64_t fixed_overhead_bytes(const SceneDesc& scene) {
@@ -67,6 +68,7 @@ MemoryPlan plan_memory(const SceneDesc& scene, const RunOptions& options) {
     MemoryPlan plan;
     plan.fixed_overhead_bytes = fixed_overhead_bytes(scene);
     const int frames = scene.time.frames;
+    const int ranks = std::max(1, options.ranks);
     if (options.strategy == Strategy::FrameByFrame) {
         plan.sections = frames;
     } else if (options.sections) {
@@ -76,7 +78,7 @@ MemoryPlan plan_memory(const SceneDesc& scene, const RunOptions& options) {
         plan.sections = *options.sections;
     } else if (options.max_memory_bytes) {
         uint64_t budget = *options.max_memory_bytes;
-        uint64_t one_frame = section_buffer_bytes(scene, frames);
+        uint64_t one_frame = section_buffer_bytes(scene, frames, ranks);
         if (one_frame > budget)
             throw InputError("command line: --max-memory: " + format_bytes(budget) +
                              " cannot hold even one frame per section; that needs " + std::to_string(one_frame) +
@@ -85,12 +87,12 @@ MemoryPlan plan_memory(const SceneDesc& scene, const RunOptions& options) {
         int lo = 1, hi = frames;
         while (lo < hi) {
             int mid = lo + (hi - lo) / 2;
-            if (section_buffer_bytes(scene, mid) <= budget) hi = mid;
+            if (section_buffer_bytes(scene, mid, ranks) <= budget) hi = mid;
             else lo = mid + 1;
         }
         plan.sections = lo;
     }
-    plan.buffer_bytes_per_section = section_buffer_bytes(scene, plan.sections);
+    plan.buffer_bytes_per_section = section_buffer_bytes(scene, plan.sections, ranks);
     // Encoding one section while the next renders needs two sections' buffers: only when a
     // budget says both fit (sections were asked for to save memory, so never by default).
     plan.overlap = plan.sections > 1 && options.max_memory_bytes &&

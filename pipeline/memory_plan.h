@@ -19,10 +19,11 @@ struct MemoryPlan {
 };
 
 int pulse_bucket_count(const SceneDesc& scene);
-uint64_t section_buffer_bytes(const SceneDesc& scene, int sections);
+// With `ranks` MPI ranks, the buffers of one rank (the one with the most pixels).
+uint64_t section_buffer_bytes(const SceneDesc& scene, int sections, int ranks = 1);
 uint64_t fixed_overhead_bytes(const SceneDesc& scene);
 
-// K from --sections, or the smallest K whose buffers fit --max-memory (InputError with the
+// K from --sections, or the smallest K whose buffers (per rank, options.ranks) fit --max-memory (InputError with the
 // number that would fit when even one frame per section is too much), or 1.
 MemoryPlan plan_memory(const SceneDesc& scene, const RunOptions& options);
 

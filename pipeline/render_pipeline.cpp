@@ -11,6 +11,7 @@
 #include <memory>
 #include <optional>
 
+#include "pipeline/distributed/image_gather.h"
 #include "stages/output/exr_io.h"
 #include "stages/output/tone_map.h"
 #include "stages/render/frame_assembly.h"
@@ -47,19 +48,31 @@ using FramePtr = std::shared_ptr<FrameImage>;
 
 // Pulse frames are far dimmer than the steady image, and a seen emitter lights only the first
 // one: expose for the 99th percentile of the lit pixels of all frames pooled (a strided subset
-// of pixels, at most about a million values).
+// of pixels, at most about a million values). With several ranks, each picks the same pixels
+// among its own and rank 0 pools them: the percentile of the same values (0 elsewhere).
 double exposure_of_brightest_pulse_frame(const SectionBuffer& buffer, const RenderContext& ctx) {
     FrameAssembler pulse(buffer, EmissionMode::Pulse, ctx.pulse_buckets);
     const size_t pixels = ctx.pixels(), frames = static_cast<size_t>(buffer.layout.frames());
     const size_t stride = std::max<size_t>(1, pixels * frames / (1u << 20));
+    const PixelShare share = buffer.share;
     std::vector<float> rgb, lit;
+    auto add = [&](size_t local) {
+        float y = 0.2126f * rgb[3 * local] + 0.7152f * rgb[3 * local + 1] + 0.0722f * rgb[3 * local + 2];
+        if (y > 0 && std::isfinite(y)) lit.push_back(y);
+    };
     for (int f = buffer.layout.first_frame; f < buffer.layout.end_frame; ++f) {
         pulse.frame(f, rgb);
-        for (size_t p = (f * 7919u) % stride; p < pixels; p += stride) {
-            float y = 0.2126f * rgb[3 * p] + 0.7152f * rgb[3 * p + 1] + 0.0722f * rgb[3 * p + 2];
-            if (y > 0 && std::isfinite(y)) lit.push_back(y);
+        const size_t first = (f * 7919u) % stride;
+        if (share.ranks == 1) {
+            for (size_t p = first; p < pixels; p += stride) add(p);
+        } else {
+            for (size_t local = 0; local < share.count(); ++local) {
+                const size_t p = share.global(local);
+                if (p >= first && (p - first) % stride == 0) add(local);
+            }
         }
     }
+    if (ctx.exchange) gather_values(*ctx.exchange, lit);
     if (lit.empty()) return 1.0;
     auto nth = lit.begin() + static_cast<std::ptrdiff_t>(0.99 * static_cast<double>(lit.size() - 1));
     std::nth_element(lit.begin(), nth, lit.end());
@@ -78,6 +91,7 @@ double exposure_from_preview(const RenderContext& ctx, SectionCounters& counters
         small.camera.height = std::max(8, ctx.height / 4);
         small.render.radius = ctx.initial_radius;
         RenderContext preview(small);
+        preview.exchange = ctx.exchange;
         SectionLayout l = make_section(preview.timeline, EmissionMode::Pulse, preview.pulse_buckets, 1, 0);
         SectionRun run = render_section(preview, l, passes, photons, counters);
         return exposure_of_brightest_pulse_frame(*run.buffer, preview);
@@ -90,6 +104,10 @@ double exposure_from_preview(const RenderContext& ctx, SectionCounters& counters
     FrameAssembler a(*run.buffer, EmissionMode::Constant, 1);
     std::vector<float> rgb;
     a.steady(rgb);
+    if (ctx.exchange) {
+        gather_image(*ctx.exchange, ctx.pixels(), rgb);
+        if (rgb.empty()) return 1.0;  // only rank 0 tone-maps
+    }
     return exposure_from_steady(rgb.data(), ctx.width, ctx.height);
 }
 
@@ -116,13 +134,34 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameOutputs& outputs, const 
     const EmissionMode mode = ctx.scene.emission.mode;
     const std::vector<SectionLayout> layouts = plan_sections(ctx, plan, job.strategy);
     auto resumed = [&](int s) { return s < static_cast<int>(job.on_disk.size()) && job.on_disk[s]; };
+    // With several ranks, every rank takes part in whatever rank 0's outputs need (the
+    // exposure, the cube's planes), so rank 0 decides; the frames come to it, in order.
+    RankExchange* ex = ctx.exchange;
+    const bool root = !ex || ex->rank() == 0;
+    bool exposure_pending = outputs.needs_exposure();
+    bool wants_cube = outputs.wants_cube();
+    if (ex) {
+        exposure_pending = ex->broadcast(Channel::Frames, exposure_pending);
+        wants_cube = ex->broadcast(Channel::Frames, wants_cube);
+    }
+    // An interrupt, as every rank sees it: with ranks, only once they agreed to stop after the
+    // same pass (a section's render comes back short on all of them alike).
+    std::atomic<bool> agreed_stop{false};
+    auto stopped = [&] { return ex ? agreed_stop.load() : cancel.load(); };
+    auto whole_image = [&](std::vector<float>& rgb) {
+        if (ex) gather_image(*ex, ctx.pixels(), rgb);
+    };
 
-    if (outputs.needs_exposure() && resumed(plan.sections - 1) && mode == EmissionMode::Constant) {
+    if (exposure_pending && resumed(plan.sections - 1) && mode == EmissionMode::Constant) {
         ExrImage steady = read_exr(outputs.exr_steady_path());
         outputs.set_exposure(exposure_from_steady(steady.rgb.data(), ctx.width, ctx.height));
-    } else if (outputs.needs_exposure() && (plan.sections > 1 || resumed(0))) {
+        exposure_pending = false;
+    } else if (exposure_pending && (plan.sections > 1 || resumed(0))) {
         auto t0 = Clock::now();
-        outputs.set_exposure(exposure_from_preview(ctx, counters));
+        const double e = exposure_from_preview(ctx, counters);
+        if (root) outputs.set_exposure(e);
+        exposure_pending = false;
+        stats.passes_run += std::max(2, passes / 8);
         malloc_trim(0);  // the preview's photon map and buffer: back to the system
         stats.exposure_pass = since(t0);
     }
@@ -130,7 +169,7 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameOutputs& outputs, const 
     flow::graph g;
     int next_section = 0;
     flow::input_node<int> sections(g, [&](tbb::flow_control& fc) -> int {
-        if (next_section >= plan.sections || cancel.load()) {
+        if (next_section >= plan.sections || stopped()) {
             fc.stop();
             return 0;
         }
@@ -146,20 +185,28 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameOutputs& outputs, const 
             ++stats.sections_resumed;
             return s;
         }
-        if (cancel.load()) {  // taken from the queue just before the interrupt: not started
+        if (stopped()) {  // taken from the queue just before the interrupt: not started
             s->complete = false;
             return s;
         }
-        std::fprintf(stderr, "slowlight: section %d/%d, frames %d-%d: %s of time buckets\n", index + 1,
-                     plan.sections, s->layout.first_frame, s->layout.end_frame - 1,
-                     format_bytes(SectionBuffer::bytes_needed(ctx.pixels(), s->layout.slots(), ctx.has_ambient())).c_str());
+        if (root)
+            std::fprintf(stderr, "slowlight: section %d/%d, frames %d-%d: %s of time buckets%s\n", index + 1,
+                         plan.sections, s->layout.first_frame, s->layout.end_frame - 1,
+                         format_bytes(SectionBuffer::bytes_needed(
+                                          ex ? PixelShare{0, ex->ranks(), ctx.pixels()}.count() : ctx.pixels(),
+                                          s->layout.slots(), ctx.has_ambient()))
+                             .c_str(),
+                         ex ? " per rank" : "");
         s->run = render_section(ctx, s->layout, passes, photons_per_pass, counters,
                                 [&](int pass) { if (progress) progress(index, pass); },
                                 [&] { return cancel.load(); });
         s->complete = s->run.buffer->passes_done == passes;
+        if (!s->complete) agreed_stop = true;
+        stats.passes_run += s->run.buffer->passes_done;
         stats.render.camera += s->run.times.camera;
         stats.render.photons += s->run.times.photons;
         stats.render.gather += s->run.times.gather;
+        stats.render.grid += s->run.times.grid;
         stats.photon_map_bytes = std::max(stats.photon_map_bytes, s->run.photon_map_bytes);
         if (!s->complete) s->run.buffer.reset();
         return s;
@@ -184,18 +231,30 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameOutputs& outputs, const 
                 if (s.last) {
                     std::vector<float> steady;
                     s.assembler->steady(steady);
-                    if (outputs.needs_exposure())
-                        outputs.set_exposure(mode == EmissionMode::Pulse
-                                                 ? exposure_of_brightest_pulse_frame(*s.run.buffer, ctx)
-                                                 : exposure_from_steady(steady.data(), ctx.width, ctx.height));
-                    outputs.write_steady(steady);
+                    whole_image(steady);
+                    if (exposure_pending) {
+                        const double e = mode == EmissionMode::Pulse
+                                             ? exposure_of_brightest_pulse_frame(*s.run.buffer, ctx)
+                                             : (root ? exposure_from_steady(steady.data(), ctx.width, ctx.height) : 1.0);
+                        if (root) outputs.set_exposure(e);
+                        exposure_pending = false;
+                    }
+                    if (root) outputs.write_steady(steady);
                 }
             }
             s.assembler->frame(job_in.frame, img.rgb);
-            if (outputs.wants_cube()) {
-                if (job_in.frame == 0) s.assembler->before_plane(img.before);
+            whole_image(img.rgb);
+            if (wants_cube) {
+                if (job_in.frame == 0) {
+                    s.assembler->before_plane(img.before);
+                    whole_image(img.before);
+                }
                 s.assembler->bucket_plane(job_in.frame, img.bucket);
-                if (s.last && job_in.frame + 1 == s.layout.end_frame) s.assembler->after_plane(img.after);
+                whole_image(img.bucket);
+                if (s.last && job_in.frame + 1 == s.layout.end_frame) {
+                    s.assembler->after_plane(img.after);
+                    whole_image(img.after);
+                }
             }
         }
         stats.assembly += since(t0);
@@ -205,7 +264,7 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameOutputs& outputs, const 
     Write write(g, flow::serial, [&](const FramePtr& frame, Write::output_ports_type& out) {
         const FrameImage& img = *frame;
         auto t0 = Clock::now();
-        outputs.write_frame(img.frame, img.rgb, img.section->from_disk);
+        if (root) outputs.write_frame(img.frame, img.rgb, img.section->from_disk);
         if (!img.before.empty()) outputs.write_cube_plane(img.before);
         if (!img.bucket.empty()) outputs.write_cube_plane(img.bucket);
         if (!img.after.empty()) outputs.write_cube_plane(img.after);
@@ -236,7 +295,23 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameOutputs& outputs, const 
     stats.photons = counters.photons.photons.load();
     stats.photon_records = counters.photons.stored.load();
     stats.rays = counters.photons.rays.load() + counters.camera.rays.load();
-    stats.interrupted = cancel.load();
+    stats.interrupted = stopped();
+    if (ex) {  // every rank counted its own photons and rays: the job's totals
+        uint64_t totals[4] = {stats.photons, stats.photon_records, stats.rays, stats.interrupted ? 1u : 0u};
+        ex->sum(Channel::Passes, totals, 4);
+        stats.photons = totals[0];
+        stats.photon_records = totals[1];
+        stats.rays = totals[2];
+        stats.interrupted = totals[3] > 0;
+        stats.ranks = ex->ranks();
+        const int passes_ch = static_cast<int>(Channel::Passes), photons_ch = static_cast<int>(Channel::Photons),
+                  frames_ch = static_cast<int>(Channel::Frames);
+        stats.exchanged_sent[0] = ex->sent[passes_ch] + ex->sent[photons_ch];
+        stats.exchanged_received[0] = ex->received[passes_ch] + ex->received[photons_ch];
+        stats.exchanged_sent[1] = ex->sent[frames_ch];
+        stats.exchanged_received[1] = ex->received[frames_ch];
+        stats.photon_transfer_seconds = ex->transfer_seconds[photons_ch];
+    }
     return stats;
 }
 

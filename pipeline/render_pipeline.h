@@ -26,7 +26,13 @@ struct PipelineStats {
     double exposure_pass = 0, assembly = 0, writing = 0;
     uint64_t photons = 0, rays = 0, photon_records = 0, photon_map_bytes = 0;
     int sections_done = 0, sections_resumed = 0;
+    int passes_run = 0;  // photon passes traced, the exposure preview's included
     bool interrupted = false;
+    // With several ranks (MPI): their number, and this rank's payload bytes per channel
+    // (0: the passes' photons and reductions, 1: frames to rank 0), counted before the totals.
+    int ranks = 1;
+    uint64_t exchanged_sent[2] = {0, 0}, exchanged_received[2] = {0, 0};
+    double photon_transfer_seconds = 0;  // rank 0's time moving photon records (not waiting)
 };
 
 // (section, passes done in it) after every pass.

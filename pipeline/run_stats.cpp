@@ -50,6 +50,14 @@ void write_stats_json(const std::string& path, const RunSummary& s) {
     j["sections_overlap"] = s.plan.overlap;
     j["exposure"] = s.exposure;
     j["interrupted"] = p.interrupted;
+    j["ranks"] = p.ranks;
+    if (p.ranks > 1)  // rank 0's payload: what it received with the passes and with the frames
+        j["exchanged_bytes"] = {{"passes_received", p.exchanged_received[0]},
+                                {"passes_sent", p.exchanged_sent[0]},
+                                {"passes", p.passes_run},
+                                {"frames_received", p.exchanged_received[1]},
+                                {"photon_grid_seconds", p.render.grid},  // rank 0's, part of photon_passes
+                                {"photon_transfer_seconds", p.photon_transfer_seconds}};
     // A device or FIFO (/dev/stdout, a pipe) is written in place, never replaced by a rename.
     std::error_code ec;
     auto type = std::filesystem::status(path, ec).type();

@@ -1,11 +1,14 @@
 #include "pipeline/scene_info.h"
 
+#include <algorithm>
+
 #include "core/errors.h"
 #include "pipeline/memory_plan.h"
 
 namespace sl {
 
-void print_scene_info(std::ostream& out, const SceneDesc& s) {
+void print_scene_info(std::ostream& out, const SceneDesc& s, int ranks) {
+    ranks = std::max(1, ranks);
     const double delta = (s.time.end_ns - s.time.start_ns) / s.time.frames;
     out << "scene:      " << s.source << "\n"
         << "image:      " << s.camera.width << " x " << s.camera.height << "\n"
@@ -17,22 +20,24 @@ void print_scene_info(std::ostream& out, const SceneDesc& s) {
         << "render:     " << s.render.passes << " passes x " << s.render.photons_per_pass << " photons, max_depth "
         << s.render.max_depth << ", alpha " << s.render.alpha << "\n"
         << "memory:     fixed overhead about " << format_bytes(fixed_overhead_bytes(s)) << "\n";
-    out << "  sections K   buffers per section\n";
+    if (ranks > 1) out << "ranks:      " << ranks << " (MPI): each holds the buffers of 1/" << ranks << " of the pixels\n";
+    out << "  sections K   buffers per section" << (ranks > 1 ? " per rank" : "") << "\n";
     for (int k : {1, 2, 4, 8}) {
         if (k > s.time.frames) break;
-        uint64_t b = section_buffer_bytes(s, k);
+        uint64_t b = section_buffer_bytes(s, k, ranks);
         out << "  " << k << (k < 10 ? "            " : "           ") << format_bytes(b) << " (" << b << " bytes)\n";
     }
     out << "  budget       smallest K (--max-memory)\n";
     for (uint64_t mib : {64ull, 256ull, 1024ull, 4096ull}) {
         RunOptions o;
         o.max_memory_bytes = mib << 20;
+        o.ranks = ranks;
         std::string label = mib >= 1024 ? std::to_string(mib / 1024) + "G" : std::to_string(mib) + "M";
         out << "  " << label << std::string(13 - label.size(), ' ');
         try {
             out << plan_memory(s, o).sections << "\n";
         } catch (const InputError&) {
-            out << "does not fit (one frame per section needs " << format_bytes(section_buffer_bytes(s, s.time.frames)) << ")\n";
+            out << "does not fit (one frame per section needs " << format_bytes(section_buffer_bytes(s, s.time.frames, ranks)) << ")\n";
         }
     }
 }

@@ -5,5 +5,6 @@
 #include "config/scene_desc.h"
 
 namespace sl {
-void print_scene_info(std::ostream& out, const SceneDesc& scene);
+// `ranks`: the memory is per rank when that many MPI ranks share the render.
+void print_scene_info(std::ostream& out, const SceneDesc& scene, int ranks = 1);
 }  // namespace sl

@@ -11,7 +11,7 @@ packages=(
   libembree-dev libtbb-dev libopenimageio-dev openimageio-tools libopenexr-dev
   libavformat-dev libavcodec-dev libswscale-dev libavutil-dev ffmpeg
   nlohmann-json3-dev libtinyobjloader-dev libgtest-dev libbenchmark-dev
-  gnuplot-nox
+  gnuplot-nox libopenmpi-dev openmpi-bin
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -48,7 +48,11 @@ struct PixelTracer {
     bool has_visible_point = false;
     PixelSegments segments;
 
-    void trace(size_t pixel) {
+    size_t local = 0;  // the pixel's index in the buffer (its own, or its rank's share)
+
+    // `pixel`: in the image (it picks the random stream and the ray); `local_pixel`: in the buffer.
+    void trace(size_t pixel, size_t local_pixel) {
+        local = local_pixel;
         const SceneDesc& sc = ctx.scene;
         Rng rng(sc.render.seed, 1, static_cast<uint64_t>(pass), pixel);
         float fx = static_cast<float>(pixel % ctx.width) + rng.uniform();
@@ -74,7 +78,7 @@ struct PixelTracer {
             if (hit.light >= 0) {  // an emitter seen directly (or through specular surfaces)
                 const LightDesc& l = sc.lights[hit.light];
                 if (dot(d, cross(l.edge1, l.edge2)) < 0)
-                    deposit(buffer, ctx.timeline, pixel, tof ? leg_ns : 0.0, beta * l.radiance);
+                    deposit(buffer, ctx.timeline, local, tof ? leg_ns : 0.0, beta * l.radiance);
                 return;
             }
             const MaterialDesc& m = sc.materials[hit.material];
@@ -117,7 +121,7 @@ struct PixelTracer {
         has_visible_point = true;
         if (!buffer.ambient.empty()) {
             Vec3 a = albedo_beta * sc.render.ambient;
-            float* amb = &buffer.ambient[pixel * 3];
+            float* amb = &buffer.ambient[local * 3];
             amb[0] += a.x; amb[1] += a.y; amb[2] += a.z;
         }
         // Direct light: one shadow ray per light, arriving after the light-to-point length.
@@ -134,7 +138,7 @@ struct PixelTracer {
             if (ctx.geometry.occluded(origin, s.to_light, 0, s.distance * (1 - 1e-4f))) continue;
             Vec3 e = s.irradiance;
             if (medium) e *= medium->transmittance(origin, s.to_light, s.distance);
-            deposit(buffer, ctx.timeline, pixel, t, f * e);
+            deposit(buffer, ctx.timeline, local, t, f * e);
         }
     }
 };
@@ -152,13 +156,14 @@ CameraPassTimes camera_pass(const RenderContext& ctx, int pass, const PassPhoton
     const auto t0 = std::chrono::steady_clock::now();
     const std::clock_t cpu0 = std::clock();
     Work total = tbb::parallel_reduce(
-        tbb::blocked_range<size_t>(0, ctx.pixels(), 256), Work{},
+        tbb::blocked_range<size_t>(0, buffer.radius2.size(), 256), Work{},  // this rank's pixels
         [&](const tbb::blocked_range<size_t>& r, Work w) {
             PixelTracer tracer{ctx, buffer, pass, medium, 0, {}, false, {}};
             BeamCounters beam;
+            const PixelShare share = buffer.share;
             for (size_t p = r.begin(); p != r.end(); ++p) {
                 const uint64_t c0 = cycle_clock();
-                tracer.trace(p);
+                tracer.trace(share.global(p), p);
                 const uint64_t c1 = cycle_clock();
                 if (volume && tracer.segments.count > 0)
                     gather_volume_at(ctx, tracer.segments, *volume, photons.emitted, p, buffer, beam);

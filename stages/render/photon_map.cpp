@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cstring>
 
 #include "core/rng.h"
 #include "core/specular_path.h"
@@ -91,7 +92,7 @@ struct PhotonPath {
 uint64_t PhotonMap::bytes() const {
     uint64_t b = sorted_.capacity() * sizeof(PhotonRecord) +
                  (staged_slot_.capacity() + staged_index_.capacity() + cell_start_.capacity() +
-                  partition_start_.capacity()) * sizeof(uint32_t);
+                  partition_start_.capacity()) * sizeof(uint32_t) + exchanged_.capacity();
     for (const Batch& v : batches_)
         b += v.records.capacity() * sizeof(PhotonRecord) +
              (v.partition_begin.capacity() + v.partition_end.capacity()) * 4 +
@@ -101,14 +102,23 @@ uint64_t PhotonMap::bytes() const {
 
 void PhotonMap::build(const RenderContext& ctx, const SectionLayout& layout, int pass, int64_t count,
                       double cell_size, PhotonTraceCounters& counters, VolumePhotonMap* volume) {
+    trace(ctx, layout, pass, count, counters, volume != nullptr);
+    finish(ctx, cell_size, counters, volume);
+}
+
+void PhotonMap::trace(const RenderContext& ctx, const SectionLayout& layout, int pass, int64_t count,
+                      PhotonTraceCounters& counters, bool with_volume) {
     const HomogeneousMedium* medium = ctx.medium ? &*ctx.medium : nullptr;
-    if (!medium) volume = nullptr;
+    const bool volume = medium && with_volume;
     const size_t nbatches = ctx.lights.has_emission() ? static_cast<size_t>((count + kBatch - 1) / kBatch) : 0;
     batches_.resize(nbatches);
-    inv_cell_ = static_cast<float>(1.0 / std::max(cell_size, 1e-12));
-    tbb::parallel_for(size_t(0), nbatches, [&](size_t b) {
+    RankExchange* ex = ctx.exchange;
+    const size_t own_first = ex ? first_batch(nbatches, ex->rank(), ex->ranks()) : 0;
+    const size_t own_end = ex ? first_batch(nbatches, ex->rank() + 1, ex->ranks()) : nbatches;
+    tbb::parallel_for(own_first, own_end, [&](size_t b) {
         Batch& batch = batches_[b];
         batch.records.clear();
+        batch.received = nullptr;
         batch.volume.clear();
         Rng rng(ctx.scene.render.seed, 2, static_cast<uint64_t>(pass), b);
         PhotonPath path{ctx, layout, batch.records, medium, volume ? &batch.volume : nullptr};
@@ -117,17 +127,96 @@ void PhotonMap::build(const RenderContext& ctx, const SectionLayout& layout, int
         counters.photons.fetch_add(static_cast<uint64_t>(n), std::memory_order_relaxed);
         counters.rays.fetch_add(path.rays, std::memory_order_relaxed);
     });
+    size_t own = 0, own_volume = 0;
+    for (size_t b = own_first; b < own_end; ++b) {
+        own += batches_[b].records.size();
+        own_volume += batches_[b].volume.size();
+    }
+    counters.stored.fetch_add(own, std::memory_order_relaxed);  // this rank's own records
+    if (volume) counters.stored_volume.fetch_add(own_volume, std::memory_order_relaxed);
+    if (ex) exchange_batches(*ex, nbatches);
+}
+
+void PhotonMap::finish(const RenderContext& ctx, double cell_size, PhotonTraceCounters& counters,
+                       VolumePhotonMap* volume) {
+    if (!ctx.medium) volume = nullptr;
+    inv_cell_ = static_cast<float>(1.0 / std::max(cell_size, 1e-12));
     size_t total = 0;
-    for (const Batch& v : batches_) total += v.records.size();
-    counters.stored.fetch_add(total, std::memory_order_relaxed);
+    for (const Batch& v : batches_) total += v.count();
     sort_into_grid(total);
     if (volume) {
         std::vector<const std::vector<VolumePhoton>*> parts;
         parts.reserve(batches_.size());
         for (const Batch& v : batches_) parts.push_back(&v.volume);
         volume->build(parts);
-        counters.stored_volume.fetch_add(volume->size(), std::memory_order_relaxed);
     }
+}
+
+// One all-gather per pass. A rank's message: per own batch its record and volume-photon counts
+// (two uint32), then the records, then the volume photons, batch after batch. Unpacked in
+// batch order, every rank ends with the same batches, hence the same grid and the same BVH.
+void PhotonMap::exchange_batches(RankExchange& ex, size_t nbatches) {
+    const int n = ex.ranks(), me = ex.rank();
+    const size_t first = first_batch(nbatches, me, n), end = first_batch(nbatches, me + 1, n);
+    std::vector<char> mine;
+    {
+        size_t bytes = (end - first) * 2 * sizeof(uint32_t);
+        for (size_t b = first; b < end; ++b)
+            bytes += batches_[b].records.size() * sizeof(PhotonRecord) + batches_[b].volume.size() * sizeof(VolumePhoton);
+        mine.resize(bytes);
+        char* at = mine.data();
+        auto put = [&](const void* src, size_t len) {
+            if (len) std::memcpy(at, src, len);
+            at += len;
+        };
+        for (size_t b = first; b < end; ++b) {
+            const uint32_t counts[2] = {static_cast<uint32_t>(batches_[b].records.size()),
+                                        static_cast<uint32_t>(batches_[b].volume.size())};
+            put(counts, sizeof counts);
+        }
+        for (size_t b = first; b < end; ++b) put(batches_[b].records.data(), batches_[b].records.size() * sizeof(PhotonRecord));
+        for (size_t b = first; b < end; ++b) put(batches_[b].volume.data(), batches_[b].volume.size() * sizeof(VolumePhoton));
+    }
+    std::vector<uint64_t> counts;
+    ex.all_gather(Channel::Photons, mine.data(), mine.size(), exchanged_, counts);
+    // Where each other rank's batch starts in the message (a cheap scan). Its records are then
+    // sorted from there, in place; its volume photons are copied into the batch (in parallel:
+    // every rank makes these copies, so they must not be one thread's work).
+    struct Source {
+        const PhotonRecord* records;
+        const char* volume;
+        uint32_t n_records, n_volume;
+    };
+    std::vector<Source> from(nbatches, Source{nullptr, nullptr, 0, 0});
+    const char* at = exchanged_.data();
+    for (int r = 0; r < n; ++r) {
+        const char* next = at + counts[static_cast<size_t>(r)];
+        const size_t f = first_batch(nbatches, r, n), e = first_batch(nbatches, r + 1, n);
+        if (r != me) {
+            const char* data = at + (e - f) * 2 * sizeof(uint32_t);
+            for (size_t b = f; b < e; ++b) {
+                uint32_t c[2];
+                std::memcpy(c, at + (b - f) * sizeof c, sizeof c);
+                from[b].records = reinterpret_cast<const PhotonRecord*>(data);  // 8-byte aligned
+                from[b].n_records = c[0];
+                from[b].n_volume = c[1];
+                data += c[0] * sizeof(PhotonRecord);
+            }
+            for (size_t b = f; b < e; ++b) {
+                from[b].volume = data;
+                data += from[b].n_volume * sizeof(VolumePhoton);
+            }
+        }
+        at = next;
+    }
+    tbb::parallel_for(size_t(0), nbatches, [&](size_t b) {
+        const Source& src = from[b];
+        if (!src.records) return;  // this rank's own
+        batches_[b].received = src.records;
+        batches_[b].received_count = src.n_records;
+        batches_[b].volume.resize(src.n_volume);
+        if (src.n_volume) std::memcpy(batches_[b].volume.data(), src.volume, src.n_volume * sizeof(VolumePhoton));
+    });
 }
 
 // A stable two-step counting sort by hash slot that runs in parallel and gives the same order
@@ -144,7 +233,8 @@ void PhotonMap::sort_into_grid(size_t total) {
     tbb::parallel_for(size_t(0), batches_.size(), [&](size_t b) {
         Batch& batch = batches_[b];
         batch.partition_begin.assign(parts, 0);
-        for (const PhotonRecord& p : batch.records) ++batch.partition_begin[slot_of(p) >> shift];
+        const PhotonRecord* records = batch.data();
+        for (size_t i = 0, n = batch.count(); i < n; ++i) ++batch.partition_begin[slot_of(records[i]) >> shift];
     });
     partition_start_.assign(parts + 1, 0);
     uint32_t offset = 0;
@@ -162,8 +252,9 @@ void PhotonMap::sort_into_grid(size_t total) {
     tbb::parallel_for(size_t(0), batches_.size(), [&](size_t b) {
         Batch& batch = batches_[b];
         batch.partition_end = batch.partition_begin;  // write cursors, then the ends
-        for (size_t i = 0; i < batch.records.size(); ++i) {
-            const uint32_t slot = slot_of(batch.records[i]);
+        const PhotonRecord* records = batch.data();
+        for (size_t i = 0, n = batch.count(); i < n; ++i) {
+            const uint32_t slot = slot_of(records[i]);
             const uint32_t dst = batch.partition_end[slot >> shift]++;
             staged_slot_[dst] = slot;
             staged_index_[dst] = static_cast<uint32_t>(i);
@@ -186,8 +277,9 @@ void PhotonMap::sort_into_grid(size_t total) {
         // Fill with start[] as the cursor; afterwards start[s] is slot s's end, so shift it back.
         // The partition's staged entries are the batches' ranges, one after another.
         for (const Batch& batch : batches_) {
+            const PhotonRecord* records = batch.data();
             for (uint32_t i = batch.partition_begin[part], e = batch.partition_end[part]; i < e; ++i)
-                sorted_[start[staged_slot_[i] - first_slot]++] = batch.records[staged_index_[i]];
+                sorted_[start[staged_slot_[i] - first_slot]++] = records[staged_index_[i]];
         }
         for (uint32_t s = slots - 1; s > 0; --s) start[s] = start[s - 1];
         start[0] = lo;

@@ -35,6 +35,12 @@ public:
     // With a medium in ctx, paths also scatter in it; its events go to `volume` when given.
     void build(const RenderContext& ctx, const SectionLayout& layout, int pass, int64_t count,
                double cell_size, PhotonTraceCounters& counters, VolumePhotonMap* volume = nullptr);
+    // build() in two steps: trace (this rank's batches, then, with ranks, the exchange) needs
+    // no radius and touches only the batches, so it may run while a camera pass reads the grid
+    // of the previous pass; finish sorts the batches into the grid (and the volume BVH).
+    void trace(const RenderContext& ctx, const SectionLayout& layout, int pass, int64_t count,
+               PhotonTraceCounters& counters, bool with_volume);
+    void finish(const RenderContext& ctx, double cell_size, PhotonTraceCounters& counters, VolumePhotonMap* volume);
 
     size_t size() const { return sorted_.size(); }
     // This pass's surface records (grid order), e.g. for flux bookkeeping in tests.
@@ -47,6 +53,10 @@ public:
 
     static constexpr int kBatch = 4096;     // photon paths per task
     static constexpr int kPartitionBits = 6;  // the sort's first, parallel, radix step
+    // The batches rank `rank` of `ranks` traces: a contiguous share, [first, end).
+    static size_t first_batch(size_t nbatches, int rank, int ranks) {
+        return nbatches * static_cast<size_t>(rank) / static_cast<size_t>(ranks);
+    }
 
 private:
     uint32_t hash_cell(int32_t ix, int32_t iy, int32_t iz) const {
@@ -55,9 +65,18 @@ private:
     }
     int32_t cell(float v) const { return static_cast<int32_t>(std::floor(v * inv_cell_)); }
     void sort_into_grid(size_t total);
+    // With several ranks: each traced batches [first, end) of its own; afterwards every rank
+    // holds every batch, as one process would have traced them.
+    void exchange_batches(RankExchange& ex, size_t nbatches);
 
     struct Batch {
-        std::vector<PhotonRecord> records;
+        std::vector<PhotonRecord> records;  // traced by this process
+        // Or, with ranks, another rank's records, read in place in the exchange buffer (every
+        // rank sorts every record: a copy less is work that does not shrink with the ranks).
+        const PhotonRecord* received = nullptr;
+        uint32_t received_count = 0;
+        const PhotonRecord* data() const { return received ? received : records.data(); }
+        size_t count() const { return received ? received_count : records.size(); }
         std::vector<uint32_t> partition_begin;  // where this batch's records of each partition
         std::vector<uint32_t> partition_end;    // go in the staged arrays
         std::vector<VolumePhoton> volume;  // medium scattering events (with a medium only)
@@ -70,6 +89,7 @@ private:
     std::vector<PhotonRecord> sorted_;  // records grouped by hash slot: the grid's cells
     std::vector<uint32_t> cell_start_;  // hash slot -> first record (size table + 1)
     std::vector<uint32_t> partition_start_;
+    std::vector<char> exchanged_;  // every rank's batches as received (kept: no reallocation per pass)
     uint32_t mask_ = 0;
     float inv_cell_ = 1;
 };

@@ -10,6 +10,7 @@
 #include "core/medium.h"
 #include "core/scene_geometry.h"
 #include "core/timeline.h"
+#include "stages/render/rank_exchange.h"
 
 namespace sl {
 
@@ -30,6 +31,8 @@ struct RenderContext {
     std::optional<HomogeneousMedium> medium;
     float volume_radius = 0;     // initial radius of the beam estimate (meters), with a medium
     int width = 0, height = 0;
+    // The other processes rendering this image with this one (MPI ranks); null: this one alone.
+    RankExchange* exchange = nullptr;
     size_t pixels() const { return static_cast<size_t>(width) * height; }
     bool has_ambient() const { return !is_black(scene.render.ambient); }
 };

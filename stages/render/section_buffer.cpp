@@ -3,13 +3,18 @@
 namespace sl {
 
 SectionBuffer::SectionBuffer(size_t pixels, const SectionLayout& l, float initial_radius, bool with_ambient)
-    : layout(l), slots(l.slots()) {
+    : layout(l), share{0, 1, pixels}, slots(l.slots()) {
     double r2 = static_cast<double>(initial_radius) * initial_radius;
     radius2.assign(pixels, r2);
     photon_count.assign(pixels, 0.0);
     accum.assign(padded(pixels) * static_cast<size_t>(slots) * 3, 0.0f);
     if (with_ambient) ambient.assign(pixels * 3, 0.0f);
     max_radius = initial_radius;
+}
+
+SectionBuffer::SectionBuffer(const PixelShare& s, const SectionLayout& l, float initial_radius, bool with_ambient)
+    : SectionBuffer(s.count(), l, initial_radius, with_ambient) {
+    share = s;
 }
 
 uint64_t SectionBuffer::bytes_needed(size_t pixels, int slots, bool with_ambient) {

@@ -7,12 +7,15 @@
 #include <vector>
 
 #include "stages/render/huge_page_allocator.h"
+#include "stages/render/rank_exchange.h"
 #include "stages/render/section_layout.h"
 
 namespace sl {
 
 struct SectionBuffer {
     SectionBuffer(size_t pixels, const SectionLayout& layout, float initial_radius, bool ambient);
+    // Only the pixels `share` gives this rank (several ranks render one image).
+    SectionBuffer(const PixelShare& share, const SectionLayout& layout, float initial_radius, bool ambient);
 
     // Bytes this buffer will hold, computed before anything is allocated.
     static uint64_t bytes_needed(size_t pixels, int slots, bool ambient);
@@ -29,7 +32,9 @@ struct SectionBuffer {
     static size_t padded(size_t pixels) { return (pixels + kTile - 1) / kTile * kTile; }
 
     SectionLayout layout;
+    PixelShare share;  // which pixels of the image these are (all of them in one process)
     int slots;
+    // Indexed by the pixel's place among this buffer's pixels (share.global() maps it back).
     std::vector<double> radius2;        // per pixel, m^2
     std::vector<double> photon_count;   // per pixel: N of progressive photon mapping
     std::vector<float, HugePageAllocator<float>> accum;  // [tile][slot][pixel in tile][rgb], sum over passes

@@ -4,6 +4,8 @@
 
 #include <chrono>
 
+#include "stages/render/passes_on_ranks.h"
+
 namespace sl {
 namespace {
 
@@ -18,7 +20,10 @@ SectionRun render_section(const RenderContext& ctx, const SectionLayout& layout,
                           const PassCallback& on_pass, const std::function<bool()>& cancelled) {
     namespace flow = tbb::flow;
     SectionRun run;
-    run.buffer = std::make_unique<SectionBuffer>(ctx.pixels(), layout, ctx.initial_radius, ctx.has_ambient());
+    RankExchange* ex = ctx.exchange;
+    run.buffer = ex ? std::make_unique<SectionBuffer>(PixelShare{ex->rank(), ex->ranks(), ctx.pixels()}, layout,
+                                                      ctx.initial_radius, ctx.has_ambient())
+                    : std::make_unique<SectionBuffer>(ctx.pixels(), layout, ctx.initial_radius, ctx.has_ambient());
     SectionBuffer& buffer = *run.buffer;
     PhotonMap photons;
     // Volume photons exist only with a medium: a vacuum scene allocates none of it.
@@ -26,6 +31,13 @@ SectionRun render_section(const RenderContext& ctx, const SectionLayout& layout,
     if (ctx.medium) {
         volume = std::make_unique<VolumePhotonMap>();
         buffer.volume_radius2 = static_cast<double>(ctx.volume_radius) * ctx.volume_radius;
+    }
+
+    if (ex) {  // several ranks: their own loop, which overlaps the photon exchange with work
+        run_passes_on_ranks(ctx, layout, passes, photons_per_pass, counters, buffer, photons, volume.get(), run.times,
+                            on_pass, cancelled);
+        run.photon_map_bytes = photons.bytes() + (volume ? volume->bytes() : 0);
+        return run;
     }
 
     flow::graph g;

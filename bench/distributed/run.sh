@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# Two MPI ranks of one thread against one process of two threads, the same render, on this
+# machine: A (1 rank x 2 threads) and B (2 ranks x 1 thread) run alternately, ROUNDS times each,
+# and the ratio of their median wall times is the parallel efficiency of the ranks relative to
+# threads (1.0: as fast). Also prints the bytes the ranks exchanged per pass and per frame.
+#   bash bench/distributed/run.sh [ROUNDS] [extra render options...]
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+rounds=${1:-5}; shift || true
+bin=./build/slowlight
+out=$(mktemp -d)
+trap 'rm -rf "$out"' EXIT
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_btl=self,vader
+# A rank waiting in a collective yields its core instead of spinning: this machine is shared.
+export OMPI_MCA_mpi_yield_when_idle=1
+render=(render samples/cornell_box.json --width 192 --height 192 --frames 48 --passes 24 --photons 200000
+        --no-progress --exr-dir "$out/exr" "$@")
+wall() { /usr/bin/time -f %e -o "$out/t" "$@" >/dev/null 2>"$out/err" || { cat "$out/err" >&2; exit 1; }; cat "$out/t"; }
+a=(); b=()
+for ((i = 0; i < rounds; ++i)); do
+  a+=("$(wall "$bin" "${render[@]}" --threads 2 --stats "$out/a.json")")
+  b+=("$(wall mpirun -np 2 --bind-to none "$bin" "${render[@]}" --threads 1 --stats "$out/b.json")")
+  echo "round $((i + 1)): 1 rank x 2 threads ${a[-1]} s, 2 ranks x 1 thread ${b[-1]} s" >&2
+done
+python3 - "$out/b.json" "${a[*]}" "${b[*]}" <<'PY'
+import json, statistics, sys
+s = json.load(open(sys.argv[1]))
+a = [float(x) for x in sys.argv[2].split()]
+b = [float(x) for x in sys.argv[3].split()]
+ma, mb = statistics.median(a), statistics.median(b)
+e = s["exchanged_bytes"]
+frames = s["frames"] + 1  # and steady.exr
+print(f"1 rank x 2 threads: median {ma:.2f} s of {a}")
+print(f"2 ranks x 1 thread: median {mb:.2f} s of {b}")
+print(f"efficiency (A / B): {ma / mb:.3f}")
+print(f"per pass, rank 0 received {e['passes_received'] / e['passes'] / 2**20:.2f} MiB and sent {e['passes_sent'] / e['passes'] / 2**20:.2f} MiB"
+      f" ({e['passes']} passes); per frame it received {e['frames_received'] / frames / 2**10:.1f} KiB")
+PY

@@ -1,0 +1,40 @@
+#include "pipeline/distributed/image_gather.h"
+
+#include <algorithm>
+#include <cstring>
+#include <stdexcept>
+
+namespace sl {
+
+void gather_image(RankExchange& ex, size_t pixels, std::vector<float>& rgb) {
+    std::vector<char> all;
+    std::vector<uint64_t> counts;
+    ex.gather(Channel::Frames, rgb.data(), rgb.size() * sizeof(float), all, counts);
+    if (ex.rank() != 0) {
+        rgb.clear();
+        return;
+    }
+    rgb.assign(pixels * 3, 0.0f);
+    const char* at = all.data();
+    constexpr size_t kTile = PixelShare::kTile;
+    for (int r = 0; r < ex.ranks(); ++r) {
+        const PixelShare share{r, ex.ranks(), pixels};
+        if (counts[static_cast<size_t>(r)] != share.count() * 3 * sizeof(float))
+            throw std::logic_error("a rank sent an image part of the wrong size");
+        for (size_t local = 0; local < share.count(); local += kTile) {
+            const size_t n = std::min(kTile, share.count() - local);
+            std::memcpy(&rgb[share.global(local) * 3], at + local * 3 * sizeof(float), n * 3 * sizeof(float));
+        }
+        at += counts[static_cast<size_t>(r)];
+    }
+}
+
+void gather_values(RankExchange& ex, std::vector<float>& values) {
+    std::vector<char> all;
+    std::vector<uint64_t> counts;
+    ex.gather(Channel::Frames, values.data(), values.size() * sizeof(float), all, counts);
+    values.resize(all.size() / sizeof(float));
+    if (!all.empty()) std::memcpy(values.data(), all.data(), all.size());
+}
+
+}  // namespace sl

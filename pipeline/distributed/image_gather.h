@@ -1,0 +1,16 @@
+#pragma once
+// Whole images on rank 0 from the pixels each rank owns (PixelShare: tiles dealt round-robin).
+#include <vector>
+
+#include "stages/render/rank_exchange.h"
+
+namespace sl {
+
+// `rgb`: this rank's own pixels (3 floats each, in local order). Afterwards rank 0's `rgb` is the
+// whole image of `pixels` pixels in image order; the other ranks' is empty.
+void gather_image(RankExchange& ex, size_t pixels, std::vector<float>& rgb);
+
+// Every rank's values, concatenated in rank order, on rank 0 (empty elsewhere).
+void gather_values(RankExchange& ex, std::vector<float>& values);
+
+}  // namespace sl

@@ -1,0 +1,72 @@
+#include "pipeline/distributed/mpi_launch.h"
+
+#include <dlfcn.h>
+#include <unistd.h>
+
+#include <climits>
+#include <cstdlib>
+#include <filesystem>
+
+namespace sl {
+namespace {
+
+int env_int(const char* name) {
+    const char* v = std::getenv(name);
+    if (!v || !*v) return 0;
+    char* end = nullptr;
+    long x = std::strtol(v, &end, 10);
+    return end && *end == '\0' && x > 0 && x < INT_MAX ? static_cast<int>(x) : 0;
+}
+
+using StartFn = RankExchange* (*)(int*, char***, int*, char*, size_t);
+
+}  // namespace
+
+int launcher_process_count() {
+    const char* force = std::getenv("SLOWLIGHT_MPI");
+    if (force && std::string(force) == "0") return 1;
+    int n = 0;
+    if (!n) n = env_int("OMPI_COMM_WORLD_SIZE");  // Open MPI's mpirun / mpiexec
+    if (!n) n = env_int("PMI_SIZE");              // MPICH's Hydra, srun --mpi=pmi2
+    if (!n && std::getenv("PMIX_RANK")) n = env_int("SLURM_STEP_NUM_TASKS");  // srun --mpi=pmix
+    if (!n && std::getenv("SLURM_STEP_ID") && std::getenv("SLURM_PROCID")) n = env_int("SLURM_STEP_NUM_TASKS");
+    if (force && std::string(force) == "1" && n < 2) n = 2;  // let MPI itself say how many
+    return n > 1 ? n : 1;
+}
+
+DistributedStart start_distributed(int& argc, char**& argv) {
+    DistributedStart s;
+    if (launcher_process_count() < 2) return s;
+    // Beside the executable, or on the library path. RTLD_GLOBAL: MPI's own components,
+    // loaded by MPI_Init, look for the MPI library's symbols in the global scope.
+    char exe[PATH_MAX];
+    ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
+    void* lib = nullptr;
+    if (n > 0) {
+        auto beside = std::filesystem::path(std::string(exe, static_cast<size_t>(n))).parent_path() / "libslowlight_mpi.so";
+        if (std::filesystem::exists(beside)) {
+            lib = dlopen(beside.c_str(), RTLD_NOW | RTLD_GLOBAL);
+        } else {
+            lib = dlopen("libslowlight_mpi.so", RTLD_NOW | RTLD_GLOBAL);
+        }
+    }
+    if (!lib) {
+        const char* e = dlerror();
+        s.error = "started by an MPI launcher, but the MPI plugin libslowlight_mpi.so cannot be loaded: " +
+                  std::string(e ? e : "not found");
+        return s;
+    }
+    auto start = reinterpret_cast<StartFn>(dlsym(lib, "slowlight_mpi_start"));
+    if (!start) {
+        s.error = "the MPI plugin libslowlight_mpi.so has no slowlight_mpi_start";
+        return s;
+    }
+    char why[256] = {};
+    int concurrent = 0;
+    s.exchange.reset(start(&argc, &argv, &concurrent, why, sizeof why));
+    if (!s.exchange) s.error = std::string("cannot start MPI: ") + why;
+    s.concurrent_channels = concurrent != 0;
+    return s;
+}
+
+}  // namespace sl

@@ -1,0 +1,24 @@
+#pragma once
+// Starting MPI only when an MPI launcher started this process with more than one rank: the
+// plugin libslowlight_mpi.so (beside the program) is loaded then, and never otherwise, so a
+// plain `slowlight render` neither loads nor initialises MPI.
+#include <memory>
+#include <string>
+
+#include "stages/render/rank_exchange.h"
+
+namespace sl {
+
+// The number of processes the launcher's environment announces (Open MPI's mpirun, MPICH's
+// Hydra, Slurm's srun with PMI-2 or PMIx), or 1. SLOWLIGHT_MPI=0 turns MPI off, =1 forces it.
+int launcher_process_count();
+
+struct DistributedStart {
+    std::unique_ptr<RankExchange> exchange;  // null: one process, as always
+    bool concurrent_channels = false;         // both channels may be busy at once
+    std::string error;                        // why MPI could not start, when it should have
+};
+
+DistributedStart start_distributed(int& argc, char**& argv);
+
+}  // namespace sl

@@ -1,0 +1,172 @@
+// The MPI side of a distributed render, built as a plugin (libslowlight_mpi.so) that the
+// program loads only when an MPI launcher started it: a plain run never loads MPI at all.
+// Standard MPI-3 calls only, so that it builds and runs with Open MPI and MPICH alike.
+// The C interface only: the C++ bindings (deprecated) would need their own library.
+#define OMPI_SKIP_MPICXX 1
+#define MPICH_SKIP_MPICXX 1
+#include <mpi.h>
+
+#include <climits>
+#include <cstdio>
+#include <cstring>
+#include <string>
+
+#include "stages/render/rank_exchange.h"
+
+namespace {
+
+class MpiExchange final : public sl::RankExchange {
+public:
+    MpiExchange() {
+        MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
+        MPI_Comm_size(MPI_COMM_WORLD, &size_);
+        // Errors come back as return codes: a lost rank ends the job with our own error line.
+        MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
+        for (MPI_Comm& c : comm_) {
+            check(MPI_Comm_dup(MPI_COMM_WORLD, &c), "MPI_Comm_dup");
+            MPI_Comm_set_errhandler(c, MPI_ERRORS_RETURN);
+        }
+    }
+    ~MpiExchange() override {
+        for (MPI_Comm& c : comm_) MPI_Comm_free(&c);
+        MPI_Finalize();
+    }
+    int rank() const override { return rank_; }
+    int ranks() const override { return size_; }
+
+    void all_gather(sl::Channel ch, const void* mine, uint64_t bytes, std::vector<char>& all,
+                    std::vector<uint64_t>& counts) override {
+        MPI_Comm c = comm(ch);
+        counts.assign(static_cast<size_t>(size_), 0);
+        check(MPI_Allgather(&bytes, 1, MPI_UINT64_T, counts.data(), 1, MPI_UINT64_T, c), "MPI_Allgather");
+        std::vector<int> n, at;
+        const uint64_t total = displacements(counts, n, at);
+        all.resize(total);
+        const double t0 = MPI_Wtime();
+        check(MPI_Allgatherv(mine, to_int(bytes), MPI_BYTE, all.data(), n.data(), at.data(), MPI_BYTE, c),
+              "MPI_Allgatherv");
+        transfer_seconds[static_cast<int>(ch)] += MPI_Wtime() - t0;
+        count(ch, bytes * static_cast<uint64_t>(size_ - 1), total - bytes);
+    }
+
+    void gather(sl::Channel ch, const void* mine, uint64_t bytes, std::vector<char>& all,
+                std::vector<uint64_t>& counts) override {
+        MPI_Comm c = comm(ch);
+        counts.assign(static_cast<size_t>(size_), 0);
+        check(MPI_Gather(&bytes, 1, MPI_UINT64_T, counts.data(), 1, MPI_UINT64_T, 0, c), "MPI_Gather");
+        std::vector<int> n, at;
+        uint64_t total = bytes;
+        if (rank_ == 0) {
+            total = displacements(counts, n, at);
+            all.resize(total);
+        } else {
+            all.clear();
+        }
+        const double t0 = MPI_Wtime();
+        check(MPI_Gatherv(mine, to_int(bytes), MPI_BYTE, all.data(), n.data(), at.data(), MPI_BYTE, 0, c),
+              "MPI_Gatherv");
+        transfer_seconds[static_cast<int>(ch)] += MPI_Wtime() - t0;
+        if (rank_ == 0) count(ch, 0, total - bytes);
+        else count(ch, bytes, 0);
+    }
+
+    double max(sl::Channel ch, double v) override {
+        double out = v;
+        check(MPI_Allreduce(&v, &out, 1, MPI_DOUBLE, MPI_MAX, comm(ch)), "MPI_Allreduce");
+        count(ch, 8, 8);
+        return out;
+    }
+    void max(sl::Channel ch, double* values, int n) override {
+        check(MPI_Allreduce(MPI_IN_PLACE, values, n, MPI_DOUBLE, MPI_MAX, comm(ch)), "MPI_Allreduce");
+        count(ch, 8u * static_cast<uint64_t>(n), 8u * static_cast<uint64_t>(n));
+    }
+    int max(sl::Channel ch, int v) override {
+        int out = v;
+        check(MPI_Allreduce(&v, &out, 1, MPI_INT, MPI_MAX, comm(ch)), "MPI_Allreduce");
+        count(ch, 4, 4);
+        return out;
+    }
+    void sum(sl::Channel ch, uint64_t* values, int n) override {
+        check(MPI_Allreduce(MPI_IN_PLACE, values, n, MPI_UINT64_T, MPI_SUM, comm(ch)), "MPI_Allreduce");
+        count(ch, 8u * static_cast<uint64_t>(n), 8u * static_cast<uint64_t>(n));
+    }
+    bool broadcast(sl::Channel ch, bool v) override {
+        int x = v ? 1 : 0;
+        check(MPI_Bcast(&x, 1, MPI_INT, 0, comm(ch)), "MPI_Bcast");
+        count(ch, rank_ == 0 ? 4 : 0, rank_ == 0 ? 0 : 4);
+        return x != 0;
+    }
+    double broadcast(sl::Channel ch, double v) override {
+        check(MPI_Bcast(&v, 1, MPI_DOUBLE, 0, comm(ch)), "MPI_Bcast");
+        count(ch, rank_ == 0 ? 8 : 0, rank_ == 0 ? 0 : 8);
+        return v;
+    }
+    [[noreturn]] void abort(int code) override {
+        std::fflush(stderr);
+        MPI_Abort(MPI_COMM_WORLD, code);
+        std::_Exit(code);  // MPI_Abort does not return; should it, the process still ends
+    }
+
+private:
+    MPI_Comm comm(sl::Channel ch) {
+        ++collectives[static_cast<int>(ch)];
+        return comm_[static_cast<int>(ch)];
+    }
+    void count(sl::Channel ch, uint64_t s, uint64_t r) {
+        sent[static_cast<int>(ch)] += s;
+        received[static_cast<int>(ch)] += r;
+    }
+    // A failed collective means a rank is gone or the network failed: no rank can go on.
+    void check(int rc, const char* what) {
+        if (rc == MPI_SUCCESS) return;
+        char text[MPI_MAX_ERROR_STRING] = {};
+        int len = 0;
+        MPI_Error_string(rc, text, &len);
+        std::fprintf(stderr, "error: rank %d of %d: %s failed (%s): another rank has stopped or the network failed\n",
+                     rank_, size_, what, text);
+        abort(1);
+    }
+    int to_int(uint64_t bytes) {
+        if (bytes > static_cast<uint64_t>(INT_MAX)) {
+            std::fprintf(stderr, "error: rank %d: %llu bytes in one message, more than MPI's limit of 2 GiB; "
+                                 "use more ranks or fewer photons per pass\n",
+                         rank_, static_cast<unsigned long long>(bytes));
+            abort(1);
+        }
+        return static_cast<int>(bytes);
+    }
+    uint64_t displacements(const std::vector<uint64_t>& counts, std::vector<int>& n, std::vector<int>& at) {
+        uint64_t total = 0;
+        for (uint64_t c : counts) {
+            n.push_back(to_int(c));
+            at.push_back(to_int(total));
+            total += c;
+        }
+        to_int(total);
+        return total;
+    }
+
+    int rank_ = 0, size_ = 1;
+    MPI_Comm comm_[sl::kChannels] = {MPI_COMM_NULL, MPI_COMM_NULL, MPI_COMM_NULL};
+};
+
+}  // namespace
+
+// Initialises MPI (threads: several TBB workers call it, one per channel at a time) and returns
+// the exchange, or null with the reason in `error`. `threads_ok` tells whether the two channels
+// may be used at the same time (MPI_THREAD_MULTIPLE).
+extern "C" sl::RankExchange* slowlight_mpi_start(int* argc, char*** argv, int* threads_ok, char* error, size_t n) {
+    int provided = MPI_THREAD_SINGLE;
+    int rc = MPI_Init_thread(argc, argv, MPI_THREAD_MULTIPLE, &provided);
+    if (rc != MPI_SUCCESS) {
+        std::snprintf(error, n, "MPI_Init_thread failed");
+        return nullptr;
+    }
+    if (provided < MPI_THREAD_SERIALIZED) {
+        std::snprintf(error, n, "this MPI library offers no MPI_THREAD_SERIALIZED");
+        MPI_Finalize();
+        return nullptr;
+    }
+    *threads_ok = provided >= MPI_THREAD_MULTIPLE ? 1 : 0;
+    return new MpiExchange();
+}

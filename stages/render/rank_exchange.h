@@ -1,0 +1,78 @@
+#pragma once
+// How one render is shared among processes (MPI ranks), without naming MPI: the render stages
+// only see this narrow interface; the MPI implementation is a plugin loaded when a launcher
+// started the process (pipeline/distributed/). A render with no exchange is one process.
+//
+// The division: every rank traces a contiguous share of each pass's photon batches, and the
+// batches are all-gathered so that every rank holds the photon map one process would build
+// (same records, same order); pixels are dealt to the ranks in tiles of 16, round-robin, and a
+// rank keeps buckets, radii and photon counts for its own pixels only.
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace sl {
+
+// The pixels one rank owns: tiles of kTile pixels (the section buffer's tiles), tile t going to
+// rank t mod ranks. Local pixel i is global pixel global(i); a rank's local pixels are in
+// global order, and its local tiles are whole tiles of the image.
+struct PixelShare {
+    static constexpr size_t kTile = 16;
+    int rank = 0, ranks = 1;
+    size_t total = 0;  // pixels in the whole image
+
+    size_t tiles() const { return (total + kTile - 1) / kTile; }
+    size_t local_tiles() const {
+        const size_t t = tiles(), r = static_cast<size_t>(rank), n = static_cast<size_t>(ranks);
+        return t > r ? (t - r + n - 1) / n : 0;
+    }
+    size_t count() const {  // pixels this rank owns
+        const size_t lt = local_tiles();
+        if (lt == 0) return 0;
+        const size_t last_global_tile = (lt - 1) * static_cast<size_t>(ranks) + static_cast<size_t>(rank);
+        return (lt - 1) * kTile + std::min(kTile, total - last_global_tile * kTile);
+    }
+    size_t global(size_t local) const {
+        return ((local / kTile) * static_cast<size_t>(ranks) + static_cast<size_t>(rank)) * kTile + local % kTile;
+    }
+};
+
+// Independent streams of collective calls, each made by one thread at a time in the same order
+// on every rank: the passes of the section being rendered (radius, agreement to stop), the
+// photons of the next pass (exchanged while this pass's camera pass runs), and the frames on
+// their way to rank 0 (which may be another section's, while the next one renders).
+enum class Channel { Passes = 0, Frames = 1, Photons = 2 };
+inline constexpr int kChannels = 3;
+
+class RankExchange {
+public:
+    virtual ~RankExchange() = default;
+    virtual int rank() const = 0;
+    virtual int ranks() const = 0;
+
+    // Every rank's bytes, concatenated in rank order, on every rank; counts[r]: rank r's bytes.
+    virtual void all_gather(Channel c, const void* mine, uint64_t bytes, std::vector<char>& all,
+                            std::vector<uint64_t>& counts) = 0;
+    // The same, received by rank 0 only (the others get empty `all`).
+    virtual void gather(Channel c, const void* mine, uint64_t bytes, std::vector<char>& all,
+                        std::vector<uint64_t>& counts) = 0;
+    virtual double max(Channel c, double v) = 0;
+    virtual void max(Channel c, double* values, int n) = 0;  // element-wise, in place
+    virtual int max(Channel c, int v) = 0;
+    virtual void sum(Channel c, uint64_t* values, int n) = 0;
+    // Rank 0's value, on every rank.
+    virtual bool broadcast(Channel c, bool v) = 0;
+    virtual double broadcast(Channel c, double v) = 0;
+    // Ends every rank of the job at once (after this rank printed why).
+    [[noreturn]] virtual void abort(int code) = 0;
+
+    // Payload bytes this rank sent and received (rank 0's own share excluded), per channel.
+    uint64_t sent[kChannels] = {}, received[kChannels] = {};
+    uint64_t collectives[kChannels] = {};
+    // Seconds in the data step of (all-)gathers, after the sizes' exchange has lined the ranks
+    // up: the transfer itself, without waiting for a slower rank.
+    double transfer_seconds[kChannels] = {};
+};
+
+}  // namespace sl
