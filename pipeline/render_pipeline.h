@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "config/run_options.h"
+#include "pipeline/exposure.h"
 #include "pipeline/frame_outputs.h"
 #include "pipeline/memory_plan.h"
 #include "stages/render/render_context.h"
@@ -27,6 +28,7 @@ struct PipelineStats {
     uint64_t photons = 0, rays = 0, photon_records = 0, photon_map_bytes = 0;
     int sections_done = 0, sections_resumed = 0;
     bool interrupted = false;
+    bool steady_black = false;  // nothing but the emitters themselves reached the camera
 };
 
 // (section, passes done in it) after every pass.
@@ -37,6 +39,7 @@ struct PipelineJob {
     MemoryPlan plan;
     Strategy strategy = Strategy::Single;
     std::vector<bool> on_disk;  // per section: already rendered (--resume)
+    ExposureRule exposure_rule;
 };
 
 std::vector<SectionLayout> plan_sections(const RenderContext& ctx, const MemoryPlan& plan, Strategy strategy);
