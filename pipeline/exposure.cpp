@@ -127,7 +127,7 @@ ExposurePlan ExposureMeter::decide() const {
         std::vector<double> logs(n);
         for (size_t k = 0; k < n; ++k) logs[k] = std::log(std::max(frame_levels_[k], floor_level));
         const int reach = static_cast<int>(std::ceil(3 * kFollowSigmaFrames));
-        plan.per_frame.resize(n);
+        std::vector<double> smooth(n);
         for (size_t k = 0; k < n; ++k) {
             double sum = 0, weight = 0;
             for (int d = -reach; d <= reach; ++d) {
@@ -137,9 +137,15 @@ ExposurePlan ExposureMeter::decide() const {
                 sum += w * logs[static_cast<size_t>(j)];
                 weight += w;
             }
-            const double level = std::exp(sum / weight);
-            plan.per_frame[k] = std::max(plan.base, plan.base * plan.reference / level);
+            smooth[k] = std::exp(sum / weight);
         }
+        // Until the brightest frame the fixed exposure (frames before the light arrives stay
+        // dark instead of flaring); after it, the exposure rises as the light fades.
+        const size_t peak = static_cast<size_t>(std::max_element(frame_levels_.begin(), frame_levels_.end()) -
+                                                frame_levels_.begin());
+        plan.per_frame.assign(n, plan.base);
+        for (size_t k = peak + 1; k < n; ++k)
+            plan.per_frame[k] = plan.base * std::clamp(smooth[peak] / smooth[k], 1.0, kFollowMaxGain);
     }
     return plan;
 }

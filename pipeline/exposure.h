@@ -11,8 +11,9 @@
 //     frame's mean maps to kPulseKey;
 //   - --exposure-percentile P instead maps the P-th percentile of those pixels (for pulses, of
 //     the lit pixels of every frame pooled) to white;
-//   - --exposure-follow gives each frame its own exposure, following the light's energy
-//     smoothly over time (a Gaussian over frames in log space), never darker than the fixed one.
+//   - --exposure-follow gives each frame after the brightest one its own exposure, rising as the
+//     light's energy fades (the frames' means smoothed by a Gaussian over frames in log space, so
+//     it glides instead of flickering), never below the fixed exposure nor above 256 times it.
 #include <cstdint>
 #include <optional>
 #include <string>

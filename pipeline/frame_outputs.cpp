@@ -16,6 +16,13 @@
 namespace sl {
 namespace {
 
+// A number as text that reads back to the same double.
+std::string exact(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.17g", v);
+    return buf;
+}
+
 const char* tone_name(ToneCurve t) {
     return t == ToneCurve::Filmic ? "filmic" : t == ToneCurve::Log ? "log" : "linear";
 }
@@ -99,10 +106,10 @@ void FrameOutputs::write_frame(int index, const std::vector<float>& rgb, bool on
         std::map<std::string, std::string> meta = settings_.metadata;
         double delta = (settings_.end_ns - settings_.start_ns) / std::max(1, settings_.frames);
         meta["slowlight:frame"] = std::to_string(index);
-        meta["slowlight:frame_start_ns"] = std::to_string(settings_.start_ns + index * delta);
-        meta["slowlight:frame_end_ns"] = std::to_string(settings_.start_ns + (index + 1) * delta);
+        meta["slowlight:frame_start_ns"] = exact(settings_.start_ns + index * delta);
+        meta["slowlight:frame_end_ns"] = exact(settings_.start_ns + (index + 1) * delta);
         // The exposure and curve the video and PNG frames were made with (linear data here).
-        if (exposure_) meta["slowlight:exposure"] = std::to_string(frame_exposure(index));
+        if (exposure_) meta["slowlight:exposure"] = exact(frame_exposure(index));
         meta["slowlight:tone"] = tone_name(settings_.tone);
         seconds_exr += timed([&] { write_exr(exr_frame_path(index), w, h, rgb.data(), meta); });
     }

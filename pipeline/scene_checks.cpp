@@ -42,6 +42,17 @@ std::vector<Visible> visible_points(const RenderContext& ctx) {
     return out;
 }
 
+// The point of a quad light's parallelogram nearest to p (its plane coordinates, clamped).
+Vec3 nearest_on_quad(const LightDesc& l, Vec3 p) {
+    const Vec3 r = p - l.corner;
+    const double a = dot(l.edge1, l.edge1), b = dot(l.edge1, l.edge2), c = dot(l.edge2, l.edge2);
+    const double d = dot(r, l.edge1), e = dot(r, l.edge2), det = a * c - b * b;
+    double u = det > 0 ? (c * d - b * e) / det : 0, v = det > 0 ? (a * e - b * d) / det : 0;
+    u = std::clamp(u, 0.0, 1.0);
+    v = std::clamp(v, 0.0, 1.0);
+    return l.corner + l.edge1 * static_cast<float>(u) + l.edge2 * static_cast<float>(v);
+}
+
 }  // namespace
 
 SceneFacts scene_facts(const RenderContext& ctx) {
@@ -73,11 +84,16 @@ SceneFacts scene_facts(const RenderContext& ctx) {
             continue;
         }
         for (const Visible& v : seen) {
+            if (l.type == LightType::Quad) {  // the nearest point of the quad it faces: the earliest
+                const Vec3 n = cross(l.edge1, l.edge2);
+                const Vec3 q = nearest_on_quad(l, v.p);
+                if (dot(v.p - q, n) > 0) first = std::min<double>(first, length(v.p - q) + (tof ? v.camera_leg : 0.0f));
+            }
             for (int s = 0; s < 9; ++s) {  // a 3 x 3 grid over an area light; one sample otherwise
                 DirectLightSample d;
                 if (!ctx.lights.sample_direct(li, v.p, v.n, (s % 3 + 0.5f) / 3, (s / 3 + 0.5f) / 3, d)) continue;
                 const double t = d.distance + (tof ? v.camera_leg : 0.0f);
-                first = std::min(first, t);
+                if (l.type != LightType::Quad) first = std::min(first, t);
                 const float eps = ray_epsilon(v.p, d.distance);
                 if (!ctx.geometry.occluded(v.p + v.n * eps, d.to_light, 0, d.distance * (1 - 1e-4f)))
                     last = std::max(last, t);
