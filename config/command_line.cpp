@@ -175,7 +175,7 @@ const Option kOptions[] = {
          else bad_value(f, "must be linear, filmic or log, got '" + printable(v) + "'");
      }},
     {kRender | kRetime, "--exposure-percentile", "", "P",
-     "expose so that P % of the lit, non-emitter pixels are below white (default: by their mean)",
+     "expose P % of the pixels that see no lamp below white (default: by their mean)",
      [](RunOptions& r, std::string_view f, std::string_view v) {
          std::optional<double> x = parse_whole<double>(v);
          if (!x || !(*x > 0) || !(*x <= 100))
@@ -250,6 +250,15 @@ std::string commands_text() {
            "  slowlight --help, --version\n"
            "\n"
            "The scene file format: docs/scene-format.md in the source tree.\n";
+}
+
+void require_an_output(const RunOptions& r) {
+    // Hours of work that end nowhere help no one: ask for an output first.
+    if (r.command == RunOptions::Command::Render && !r.output_given && r.exr_dir.empty() && r.png_dir.empty() &&
+        r.cube_path.empty() && r.stats_path.empty())
+        fail("render writes nothing without an output: add -o out.mp4 (or --exr-dir, --png-dir, --cube, --stats)");
+    if (r.command == RunOptions::Command::Retime && !r.output_given && r.exr_dir.empty() && r.png_dir.empty())
+        fail("retime writes nothing without an output: add -o out.mp4 (or --exr-dir, --png-dir)");
 }
 
 std::optional<uint64_t> parse_byte_size(std::string_view text) {
@@ -366,12 +375,6 @@ RunOptions parse_command_line(int argc, const char* const* argv) {
     if (r.command == RunOptions::Command::Retime && !have_scene)
         fail("retime needs a cube file: slowlight retime CUBE.npy -o out.mp4 [--emission ...]");
     if (r.resume && r.exr_dir.empty()) fail("--resume needs --exr-dir, where the finished frames are");
-    // Hours of work that end nowhere help no one: ask for an output first.
-    if (r.command == RunOptions::Command::Render && !r.output_given && r.exr_dir.empty() && r.png_dir.empty() &&
-        r.cube_path.empty() && r.stats_path.empty())
-        fail("render writes nothing without an output: add -o out.mp4 (or --exr-dir, --png-dir, --cube, --stats)");
-    if (r.command == RunOptions::Command::Retime && !r.output_given && r.exr_dir.empty() && r.png_dir.empty())
-        fail("retime writes nothing without an output: add -o out.mp4 (or --exr-dir, --png-dir)");
     if (r.exposure && (r.exposure_percentile || r.exposure_follow))
         fail("--exposure fixes the exposure; it cannot be combined with --exposure-percentile or --exposure-follow");
     return r;

@@ -15,6 +15,9 @@ namespace sl {
 
 RunOptions parse_command_line(int argc, const char* const* argv);
 
+// InputError when render or retime would write nothing at all (before any work starts).
+void require_an_output(const RunOptions& options);
+
 // The --help text: every command and option, one line each; with a topic ("render", "info",
 // "retime"), that command's own help with only the options it uses.
 std::string usage_text(const std::string& topic = "");

@@ -61,6 +61,7 @@ void print_final_line(const FrameOutputs& outputs, const std::string& stats_path
 // `slowlight info cube.npy`: a cube is not a scene; say what to do with it.
 void refuse_cube_as_scene(const std::string& path) {
     std::ifstream f(path, std::ios::binary);
+    if (!f) return;  // missing: the scene reader says so
     char magic[6] = {};
     f.read(magic, 6);
     const bool npy = f.gcount() == 6 && std::string_view(magic, 6) == "\x93NUMPY";
@@ -88,6 +89,7 @@ int render(const RunOptions& o) {
     RenderContext ctx(scene);  // meshes and the BVH: input errors here come before any output exists
     for (const std::string& w : scene_warnings(ctx, scene_facts(ctx))) std::fprintf(stderr, "%s\n", w.c_str());
 
+    require_an_output(o);  // after every check of the input, before any work
     OutputSettings out;
     out.video = o.output;
     out.exr_dir = o.exr_dir;

@@ -87,7 +87,8 @@ MemoryPlan plan_memory(const SceneDesc& scene, const RunOptions& options) {
                                  "is about " + format_bytes(plan.fixed_overhead_bytes) +
                                  " and one frame per section needs " + format_bytes(one_frame) +
                                  " of time buckets; give at least " +
-                                 std::to_string(plan.fixed_overhead_bytes + one_frame) + " bytes");
+                                 std::to_string((plan.fixed_overhead_bytes + one_frame + (1u << 20) - 1) >> 20) +
+                                 " MiB");
             budget = std::min(budget, whole - plan.fixed_overhead_bytes);
         }
         if (one_frame > budget)

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "config/command_line.h"
 #include "config/parse_scene.h"
 #include "core/errors.h"
 #include "pipeline/frame_outputs.h"
@@ -54,6 +55,7 @@ int retime(const RunOptions& o) {
     CubeInfo info = read_sidecar(o.scene_path);
     if (cube.planes != info.frames + 2 || cube.width != info.width || cube.height != info.height)
         throw InputError(o.scene_path + ": the array's shape does not match its side-car file");
+    require_an_output(o);
 
     EmissionDesc emission;
     if (ov.emission) emission = parse_emission_option(*ov.emission);

@@ -50,8 +50,9 @@ void print_scene_info(std::ostream& out, std::ostream& err, const SceneDesc& s, 
     // Memory: the time buckets (what K divides) and the fixed part (what it does not); a
     // process needs about the sum. --max-memory bounds the sum, --max-bucket-memory the buckets.
     const uint64_t fixed_part = fixed_overhead_bytes(s);
-    out << "memory:     fixed part about " << format_bytes(fixed_part)
-        << " (libraries, scene, photon map, encoder), plus the time buckets of the sections in flight\n";
+    out << "memory:     fixed overhead about " << format_bytes(fixed_part)
+        << " (libraries, scene, photon map, encoder), plus the time buckets of the sections in flight;\n"
+        << "            --max-memory bounds the sum (the whole process), --max-bucket-memory the buckets alone\n";
     out << "  sections K   buckets per section          whole process\n";
     for (int k : {1, 2, 4, 8}) {
         if (k > s.time.frames) break;
