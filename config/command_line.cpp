@@ -70,7 +70,8 @@ const Option kOptions[] = {
     {kRender | kRetime, "--exr-dir", "", "DIR",
      "also write linear OpenEXR frames DIR/frame_0000.exr ... and DIR/steady.exr",
      [](RunOptions& r, std::string_view f, std::string_view v) { r.exr_dir = path_value(f, v); }},
-    {kRender | kRetime, "--png-dir", "", "DIR", "also write tone-mapped PNG frames DIR/frame_0000.png ...",
+    {kRender | kRetime, "--png-dir", "", "DIR",
+     "also write the video's frames as PNGs DIR/frame_0000.png ... and DIR/steady.png",
      [](RunOptions& r, std::string_view f, std::string_view v) { r.png_dir = path_value(f, v); }},
     {kRender | kInfo, "--frames", "", "N", "number of frames (time.frames)",
      [](RunOptions& r, std::string_view f, std::string_view v) {

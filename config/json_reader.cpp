@@ -263,7 +263,9 @@ int JsonObject::choice(std::string_view key,
     std::string list;
     for (std::string_view c : choices)
         list += (list.empty() ? "\"" : ", \"") + std::string(c) + "\"";
-    fail(key, "must be one of " + list + ", got " + describe_json(v));
+    const std::string guess = v.is_string() ? nearest_name(v.get<std::string>(), choices) : std::string();
+    fail(key, "must be one of " + list + ", got " + describe_json(v) +
+                  (guess.empty() ? std::string() : " (did you mean \"" + guess + "\"?)"));
 }
 
 int JsonObject::choice(std::string_view key, std::initializer_list<std::string_view> choices,

@@ -120,32 +120,23 @@ ExposurePlan ExposureMeter::decide() const {
     }
     plan.base = plan.reference > 0 ? key / plan.reference : 1.0;
     if (rule_.follow && !frame_levels_.empty() && plan.reference > 0) {
-        // Smooth the energy in log space (a fade of 10x over 10 frames stays a straight ramp), so
-        // the exposure glides instead of tracking every frame's noise.
+        // Each frame after the brightest one wants the exposure that shows it as bright as the
+        // brightest; until then, the fixed one (frames before the light arrives stay dark instead
+        // of flaring). The exposure follows those wishes through a moving average in log space
+        // (it glides from the fixed exposure instead of stepping, and a single frame's noise moves
+        // it by a third at most), so it never drops below the fixed one and trails a steady fade
+        // by about two frames.
         const size_t n = frame_levels_.size();
-        const double floor_level = plan.reference / kFollowMaxGain;
-        std::vector<double> logs(n);
-        for (size_t k = 0; k < n; ++k) logs[k] = std::log(std::max(frame_levels_[k], floor_level));
-        const int reach = static_cast<int>(std::ceil(3 * kFollowSigmaFrames));
-        std::vector<double> smooth(n);
-        for (size_t k = 0; k < n; ++k) {
-            double sum = 0, weight = 0;
-            for (int d = -reach; d <= reach; ++d) {
-                const long j = static_cast<long>(k) + d;
-                if (j < 0 || j >= static_cast<long>(n)) continue;
-                const double w = std::exp(-0.5 * d * d / (kFollowSigmaFrames * kFollowSigmaFrames));
-                sum += w * logs[static_cast<size_t>(j)];
-                weight += w;
-            }
-            smooth[k] = std::exp(sum / weight);
-        }
-        // Until the brightest frame the fixed exposure (frames before the light arrives stay
-        // dark instead of flaring); after it, the exposure rises as the light fades.
         const size_t peak = static_cast<size_t>(std::max_element(frame_levels_.begin(), frame_levels_.end()) -
                                                 frame_levels_.begin());
+        const double a = 1.0 / kFollowFrames;
+        double log_gain = 0;
         plan.per_frame.assign(n, plan.base);
-        for (size_t k = peak + 1; k < n; ++k)
-            plan.per_frame[k] = plan.base * std::clamp(smooth[peak] / smooth[k], 1.0, kFollowMaxGain);
+        for (size_t k = peak + 1; k < n; ++k) {
+            const double wish = std::log(std::clamp(plan.reference / std::max(frame_levels_[k], 0.0), 1.0, kFollowMaxGain));
+            log_gain += a * (wish - log_gain);
+            plan.per_frame[k] = plan.base * std::exp(log_gain);
+        }
     }
     return plan;
 }

@@ -12,8 +12,8 @@
 //   - --exposure-percentile P instead maps the P-th percentile of those pixels (for pulses, of
 //     the lit pixels of every frame pooled) to white;
 //   - --exposure-follow gives each frame after the brightest one its own exposure, rising as the
-//     light's energy fades (the frames' means smoothed by a Gaussian over frames in log space, so
-//     it glides instead of flickering), never below the fixed exposure nor above 256 times it.
+//     light's energy fades (a moving average over about three frames in log space, so it glides
+//     instead of flickering), never below the fixed exposure nor above 256 times it.
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -28,7 +28,7 @@ struct RenderContext;
 
 inline constexpr double kConstantKey = 0.25;  // the steady image's mean, exposed
 inline constexpr double kPulseKey = 0.30;     // the brightest pulse frame's mean, exposed
-inline constexpr double kFollowSigmaFrames = 3;  // smoothing of --exposure-follow, in frames
+inline constexpr double kFollowFrames = 3;     // --exposure-follow: frames its moving average spans
 inline constexpr double kFollowMaxGain = 256;    // how far --exposure-follow may brighten a frame
 
 struct ExposureRule {

@@ -86,6 +86,19 @@ TEST(Exposure, RetimedPulseVideoIsExposedAsTheRenderedOne) {
     r = run_program({"retime", cube, "--exr-dir", dir.file("rc"), "-o", dir.file("rc.mkv")});
     SL_EXPECT_EXIT(r, 0);
     EXPECT_NEAR(exr_exposure(dir.file("rc/frame_0000.exr")) / constant, 1.0, 1e-4);
+
+    // --exposure-follow too: frame by frame, the same exposures.
+    const std::string cube2 = dir.file("cube2.npy");
+    exposure_of(dir, "cornell_box.json", 64, 4,
+                {"--emission", "pulse", "--exposure-follow", "--cube", cube2, "--exr-dir", dir.file("rf")}, 8);
+    r = run_program({"retime", cube2, "--emission", "pulse", "--exposure-follow", "--exr-dir", dir.file("tf"), "-o",
+                     dir.file("tf.mkv")});
+    SL_EXPECT_EXIT(r, 0);
+    for (int k = 0; k < 8; ++k) {
+        const double a = exr_exposure(dir.file("rf/" + frame_name(k))), b = exr_exposure(dir.file("tf/" + frame_name(k)));
+        ASSERT_GT(a, 0);
+        EXPECT_NEAR(b / a, 1.0, 1e-4) << "frame " << k;
+    }
 }
 
 // Resuming a finished render (nothing left to do) writes the video again at the same exposure,

@@ -89,7 +89,10 @@ TEST(Subcommands, RenderAndRetimeWithoutAnyOutputRefuseToStart) {
     ASSERT_EQ(r.error_lines().size(), 1u) << r.err;
     EXPECT_NE(r.err.find("add -o out.mp4"), std::string::npos) << r.err;
     EXPECT_EQ(r.err.find("section 1/"), std::string::npos) << "it rendered anyway";
-    r = run_program({"retime", "cube.npy", "--emission", "pulse"});
+    ScratchDir dir;
+    const std::string cube = dir.file("c.npy");
+    SL_EXPECT_EXIT(run_program(small_render("", {"--cube", cube}, 2, 1, 500, 8, 8)), 0);
+    r = run_program({"retime", cube, "--emission", "pulse"});
     SL_EXPECT_EXIT(r, 2);
     EXPECT_NE(r.err.find("retime writes nothing without an output"), std::string::npos) << r.err;
 }
