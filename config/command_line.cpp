@@ -154,7 +154,7 @@ const Option kOptions[] = {
          r.stats_path = path_value(f, v);
      }},
     {kRender | kRetime, "--exposure", "", "X",
-     "linear exposure multiplier > 0 for tone-mapped output (default: from steady.exr)",
+     "fixed linear exposure multiplier > 0 (default: the mean of the pixels that see no lamp)",
      [](RunOptions& r, std::string_view f, std::string_view v) {
          std::optional<double> x = parse_whole<double>(v);
          if (!x || !std::isfinite(*x) || !(*x > 0))
