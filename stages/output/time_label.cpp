@@ -1,123 +1,77 @@
 #include "stages/output/time_label.h"
 
-extern "C" {
-#include <libavfilter/avfilter.h>
-#include <libavfilter/buffersink.h>
-#include <libavfilter/buffersrc.h>
-#include <libavutil/dict.h>
-#include <libavutil/frame.h>
-#include <libavutil/opt.h>
-}
+#include <dlfcn.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
 
 #include "core/errors.h"
-#include "stages/output/av_common.h"
 
 namespace sl {
 
-// The font: DejaVu Sans where Debian's fonts-dejavu-core puts it, else whatever fontconfig
-// calls "Sans".
-static const char* const kFontFiles[] = {"/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf",
-                                          "/usr/share/fonts/TTF/DejaVuSans.ttf",
-                                          "/usr/share/fonts/dejavu/DejaVuSans.ttf"};
-
+// The drawtext plugin, libslowlight_label.so, beside the executable (or on the library path),
+// loaded on first use: libavfilter's many libraries stay out of renders without --label.
 struct TimeLabel::Graph {
-    AVFilterGraph* graph = nullptr;
-    AVFilterContext* source = nullptr;
-    AVFilterContext* sink = nullptr;
-    AVFrame* in = nullptr;
-    AVFrame* out = nullptr;
+    using OpenFn = void* (*)(int, int, char*, size_t);
+    using BurnFn = int (*)(void*, unsigned char*, const char*, char*, size_t);
+    using CloseFn = void (*)(void*);
+    OpenFn open = nullptr;
+    BurnFn burn = nullptr;
+    CloseFn close = nullptr;
+    void* handle = nullptr;
     ~Graph() {
-        av_frame_free(&in);
-        av_frame_free(&out);
-        avfilter_graph_free(&graph);
+        if (handle && close) close(handle);
     }
 };
 
 namespace {
 
-[[noreturn]] void fail(const std::string& what, int err = 0) {
-    throw RuntimeFailure("--label: " + what + (err ? ": " + av_error_text(err) : std::string()));
-}
-
-void check(int err, const char* what) {
-    if (err < 0) fail(what, err);
+void* plugin(std::string& why) {
+    static std::string load_error;
+    static void* lib = [] {
+        char exe[PATH_MAX];
+        ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
+        std::string beside = n > 0 ? (std::filesystem::path(std::string(exe, static_cast<size_t>(n))).parent_path() /
+                                      "libslowlight_label.so").string()
+                                   : std::string();
+        void* l = beside.empty() ? nullptr : dlopen(beside.c_str(), RTLD_NOW | RTLD_LOCAL);
+        if (!l) l = dlopen("libslowlight_label.so", RTLD_NOW | RTLD_LOCAL);
+        if (!l) {
+            const char* e = dlerror();
+            load_error = "cannot load the label writer libslowlight_label.so: " + std::string(e ? e : "not found");
+        }
+        return l;
+    }();
+    why = load_error;
+    return lib;
 }
 
 }  // namespace
 
 TimeLabel::TimeLabel(int width, int height) : graph_(std::make_unique<Graph>()), width_(width), height_(height) {
-    quiet_libav_logs();
+    std::string why;
+    void* lib = plugin(why);
+    if (!lib) throw RuntimeFailure("--label: " + why);
     Graph& g = *graph_;
-    g.graph = avfilter_graph_alloc();
-    if (!g.graph) fail("out of memory");
-    const AVFilter* buffer = avfilter_get_by_name("buffer");
-    const AVFilter* sink = avfilter_get_by_name("buffersink");
-    const AVFilter* drawtext = avfilter_get_by_name("drawtext");
-    if (!buffer || !sink || !drawtext) fail("this FFmpeg's libavfilter has no drawtext filter");
-
-    char args[160];
-    std::snprintf(args, sizeof args, "video_size=%dx%d:pix_fmt=%d:time_base=1/25:pixel_aspect=1/1", width, height,
-                  static_cast<int>(AV_PIX_FMT_RGB24));
-    check(avfilter_graph_create_filter(&g.source, buffer, "in", args, nullptr, g.graph), "buffer source");
-    check(avfilter_graph_create_filter(&g.sink, sink, "out", nullptr, nullptr, g.graph), "buffer sink");
-    const enum AVPixelFormat formats[] = {AV_PIX_FMT_RGB24, AV_PIX_FMT_NONE};
-    check(av_opt_set_int_list(g.sink, "pix_fmts", formats, AV_PIX_FMT_NONE, AV_OPT_SEARCH_CHILDREN), "sink format");
-
-    // Options set one by one: no filter-graph string, so nothing needs escaping.
-    AVFilterContext* text = avfilter_graph_alloc_filter(g.graph, drawtext, "label");
-    if (!text) fail("cannot create drawtext");
-    std::string font;
-    for (const char* f : kFontFiles)
-        if (std::filesystem::exists(f)) {
-            font = f;
-            break;
-        }
-    if (!font.empty()) check(av_opt_set(text, "fontfile", font.c_str(), AV_OPT_SEARCH_CHILDREN), "fontfile");
-    else check(av_opt_set(text, "font", "Sans", AV_OPT_SEARCH_CHILDREN), "font");
-    const int size = std::max(10, height / 14), margin = std::max(4, height / 40);
-    check(av_opt_set(text, "text", "%{metadata:slowlight_label}", AV_OPT_SEARCH_CHILDREN), "text");
-    check(av_opt_set(text, "fontsize", std::to_string(size).c_str(), AV_OPT_SEARCH_CHILDREN), "fontsize");
-    check(av_opt_set(text, "fontcolor", "white", AV_OPT_SEARCH_CHILDREN), "fontcolor");
-    check(av_opt_set_int(text, "box", 1, AV_OPT_SEARCH_CHILDREN), "box");
-    check(av_opt_set(text, "boxcolor", "black@0.6", AV_OPT_SEARCH_CHILDREN), "boxcolor");
-    check(av_opt_set_int(text, "boxborderw", std::max(2, size / 5), AV_OPT_SEARCH_CHILDREN), "boxborderw");
-    check(av_opt_set(text, "x", std::to_string(margin).c_str(), AV_OPT_SEARCH_CHILDREN), "x");
-    check(av_opt_set(text, "y", ("h-th-" + std::to_string(margin)).c_str(), AV_OPT_SEARCH_CHILDREN), "y");
-    check(avfilter_init_str(text, nullptr), "drawtext (is a font installed? Debian: fonts-dejavu-core)");
-
-    check(avfilter_link(g.source, 0, text, 0), "link");
-    check(avfilter_link(text, 0, g.sink, 0), "link");
-    check(avfilter_graph_config(g.graph, nullptr), "filter graph");
-
-    g.in = av_frame_alloc();
-    g.out = av_frame_alloc();
-    if (!g.in || !g.out) fail("out of memory");
+    g.open = reinterpret_cast<Graph::OpenFn>(dlsym(lib, "slowlight_label_open"));
+    g.burn = reinterpret_cast<Graph::BurnFn>(dlsym(lib, "slowlight_label_burn"));
+    g.close = reinterpret_cast<Graph::CloseFn>(dlsym(lib, "slowlight_label_close"));
+    if (!g.open || !g.burn || !g.close) throw RuntimeFailure("--label: libslowlight_label.so lacks its functions");
+    char error[512] = {};
+    g.handle = g.open(width, height, error, sizeof error);
+    if (!g.handle) throw RuntimeFailure(std::string("--label: ") + error);
 }
 
 TimeLabel::~TimeLabel() = default;
 
 void TimeLabel::burn(uint8_t* rgb8, const std::string& label) {
-    Graph& g = *graph_;
-    av_frame_unref(g.in);
-    g.in->format = AV_PIX_FMT_RGB24;
-    g.in->width = width_;
-    g.in->height = height_;
-    g.in->pts = pts_++;
-    check(av_frame_get_buffer(g.in, 0), "frame");
-    const size_t row = static_cast<size_t>(width_) * 3;
-    for (int y = 0; y < height_; ++y) std::memcpy(g.in->data[0] + y * g.in->linesize[0], rgb8 + y * row, row);
-    av_dict_set(&g.in->metadata, "slowlight_label", label.c_str(), 0);
-    check(av_buffersrc_add_frame_flags(g.source, g.in, AV_BUFFERSRC_FLAG_KEEP_REF), "send frame");
-    av_frame_unref(g.out);
-    check(av_buffersink_get_frame(g.sink, g.out), "receive frame");
-    for (int y = 0; y < height_; ++y) std::memcpy(rgb8 + y * row, g.out->data[0] + y * g.out->linesize[0], row);
-    av_frame_unref(g.out);
+    char error[512] = {};
+    if (!graph_->burn(graph_->handle, rgb8, label.c_str(), error, sizeof error))
+        throw RuntimeFailure(std::string("--label: ") + error);
 }
 
 std::string format_frame_time(double t_ns, double delta_ns) {

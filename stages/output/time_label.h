@@ -1,6 +1,7 @@
 #pragma once
 // --label time: the frame's time written onto 8-bit RGB frames by FFmpeg's own text filter
-// (libavfilter's drawtext: FreeType glyphs, DejaVu Sans), in a dark box at the bottom left.
+// (libavfilter's drawtext: FreeType glyphs, DejaVu Sans), in a dark box at the bottom left. The
+// filter lives in a plugin (plugins/label_drawtext) loaded on first use.
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -23,7 +24,6 @@ public:
 private:
     std::unique_ptr<Graph> graph_;
     int width_, height_;
-    int64_t pts_ = 0;
 };
 
 // "t = 3.50 ns": a time in the unit that suits the window (ps below 1 ns, µs from 10000 ns),
