@@ -27,7 +27,7 @@ namespace sl {
 struct RenderContext;
 
 inline constexpr double kConstantKey = 0.25;  // the steady image's mean, exposed
-inline constexpr double kPulseKey = 0.30;     // the brightest pulse frame's mean, exposed
+inline constexpr double kPulseKey = 0.25;     // the brightest pulse frame's mean, exposed
 inline constexpr double kFollowFrames = 3;     // --exposure-follow: frames its moving average spans
 inline constexpr double kFollowMaxGain = 256;    // how far --exposure-follow may brighten a frame
 
