@@ -47,15 +47,17 @@ using FramePtr = std::shared_ptr<FrameImage>;
 
 // Feeds the meter every image it needs from a buffer that holds every frame (one section, or
 // the preview): the steady image, and the frames themselves for pulses and --exposure-follow.
-void measure_buffer(const SectionBuffer& buffer, const RenderContext& ctx, ExposureMeter& meter) {
-    const EmissionMode mode = ctx.scene.emission.mode;
-    FrameAssembler a(buffer, mode, ctx.pulse_buckets);
+void measure_buffer(const SectionBuffer& buffer, const RenderContext& ctx, ExposureMeter& meter,
+                    const std::vector<float>* steady = nullptr) {
     std::vector<float> rgb;
-    if (buffer.layout.has_after) {  // the full-path section: its slots sum to the steady image
-        a.steady(rgb);
+    if (steady) {
+        meter.add_steady(steady->data(), ctx.pixels());
+    } else if (buffer.layout.has_after) {  // the full-path section: its slots sum to the steady image
+        FrameAssembler(buffer, EmissionMode::Pulse, 1).steady(rgb);  // (no running sum needed for it)
         meter.add_steady(rgb.data(), ctx.pixels());
     }
     if (!meter.wants_frames()) return;
+    FrameAssembler a(buffer, ctx.scene.emission.mode, ctx.pulse_buckets);
     for (int f = buffer.layout.first_frame; f < buffer.layout.end_frame; ++f) {
         a.frame(f, rgb);
         meter.add_frame(f, rgb.data(), ctx.pixels());
@@ -196,14 +198,15 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameOutputs& outputs, const 
             if (!s.assembler) {
                 s.assembler.emplace(*s.run.buffer, mode, ctx.pulse_buckets);
                 if (s.last) {
-                    if (outputs.needs_exposure()) {  // one section: it holds every frame
-                        ExposureMeter meter(mode, job.exposure_rule, emitter_pixels(ctx));
-                        measure_buffer(*s.run.buffer, ctx, meter);
-                        outputs.set_exposure_plan(meter.decide());
-                    }
                     std::vector<float> steady;
                     s.assembler->steady(steady);
-                    ExposureMeter light(EmissionMode::Constant, {}, emitter_pixels(ctx));
+                    const std::vector<uint8_t> lamps = emitter_pixels(ctx);
+                    if (outputs.needs_exposure()) {  // one section: it holds every frame
+                        ExposureMeter meter(mode, job.exposure_rule, lamps);
+                        measure_buffer(*s.run.buffer, ctx, meter, &steady);
+                        outputs.set_exposure_plan(meter.decide());
+                    }
+                    ExposureMeter light(EmissionMode::Constant, {}, lamps);
                     light.add_steady(steady.data(), ctx.pixels());
                     stats.steady_black = light.decide().black;
                     outputs.write_steady(steady);
