@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "config/limits.h"
+#include "config/nearest_name.h"
 #include "config/parse_scene.h"
 #include "config/text_util.h"
 #include "core/errors.h"
@@ -46,7 +47,11 @@ std::string path_value(std::string_view flag, std::string_view v) {
 
 using Apply = void (*)(RunOptions&, std::string_view flag, std::string_view value);
 
+// Which commands an option means something to; any other command refuses it.
+enum : unsigned { kRender = 1, kInfo = 2, kRetime = 4 };
+
 struct Option {
+    unsigned commands;            // kRender | kInfo | kRetime
     std::string_view long_name;   // "--output"
     std::string_view short_name;  // "-o", or empty
     std::string_view value_name;  // "PATH", or empty for a flag
@@ -56,38 +61,39 @@ struct Option {
 
 // Every option, in --help order. Scene overrides are range-checked again by apply_overrides.
 const Option kOptions[] = {
-    {"--output", "-o", "PATH",
+    {kRender | kRetime, "--output", "-o", "PATH",
      "write the video: .mp4 (H.264), .mkv, .mov or .webm; '-' writes YUV4MPEG2 to stdout",
      [](RunOptions& r, std::string_view f, std::string_view v) {
          r.output = path_value(f, v);
          r.output_given = true;
      }},
-    {"--exr-dir", "", "DIR",
+    {kRender | kRetime, "--exr-dir", "", "DIR",
      "also write linear OpenEXR frames DIR/frame_0000.exr ... and DIR/steady.exr",
      [](RunOptions& r, std::string_view f, std::string_view v) { r.exr_dir = path_value(f, v); }},
-    {"--png-dir", "", "DIR", "also write tone-mapped PNG frames DIR/frame_0000.png ...",
+    {kRender | kRetime, "--png-dir", "", "DIR",
+     "also write the video's frames as PNGs DIR/frame_0000.png ... and DIR/steady.png",
      [](RunOptions& r, std::string_view f, std::string_view v) { r.png_dir = path_value(f, v); }},
-    {"--frames", "", "N", "number of frames (time.frames)",
+    {kRender | kInfo, "--frames", "", "N", "number of frames (time.frames)",
      [](RunOptions& r, std::string_view f, std::string_view v) {
          r.overrides.frames = int_value(f, v, 1, limits::kMaxFrames);
      }},
-    {"--passes", "", "N", "number of photon passes (render.passes)",
+    {kRender | kInfo, "--passes", "", "N", "number of photon passes (render.passes)",
      [](RunOptions& r, std::string_view f, std::string_view v) {
          r.overrides.passes = int_value(f, v, 1, limits::kMaxPasses);
      }},
-    {"--photons", "", "N", "photons per pass (render.photons_per_pass)",
+    {kRender | kInfo, "--photons", "", "N", "photons per pass (render.photons_per_pass)",
      [](RunOptions& r, std::string_view f, std::string_view v) {
          r.overrides.photons = integer_value(f, v, 1, limits::kMaxPhotonsPerPass);
      }},
-    {"--width", "", "W", "image width in pixels (camera.width)",
+    {kRender | kInfo, "--width", "", "W", "image width in pixels (camera.width)",
      [](RunOptions& r, std::string_view f, std::string_view v) {
          r.overrides.width = int_value(f, v, 1, limits::kMaxImageSide);
      }},
-    {"--height", "", "H", "image height in pixels (camera.height)",
+    {kRender | kInfo, "--height", "", "H", "image height in pixels (camera.height)",
      [](RunOptions& r, std::string_view f, std::string_view v) {
          r.overrides.height = int_value(f, v, 1, limits::kMaxImageSide);
      }},
-    {"--seed", "", "N", "random seed, 0..2^64-1 (render.seed)",
+    {kRender, "--seed", "", "N", "random seed, 0..2^64-1 (render.seed)",
      [](RunOptions& r, std::string_view f, std::string_view v) {
          std::optional<uint64_t> s = parse_whole<uint64_t>(v);
          if (!s)
@@ -95,12 +101,12 @@ const Option kOptions[] = {
                        "must be an integer in 0..18446744073709551615, got '" + printable(v) + "'");
          r.overrides.seed = *s;
      }},
-    {"--sections", "", "K", "split the frames into K sections, each its own convergence",
+    {kRender, "--sections", "", "K", "split the frames into K sections, each its own convergence",
      [](RunOptions& r, std::string_view f, std::string_view v) {
          r.sections = int_value(f, v, 1, limits::kMaxSections);
      }},
-    {"--max-memory", "", "SIZE",
-     "pick the smallest K whose buffers fit in SIZE bytes (e.g. 512M, 2G, 1.5GiB)",
+    {kRender | kInfo, "--max-memory", "", "SIZE",
+     "keep the whole process within SIZE (e.g. 512M, 2G): the smallest K that fits",
      [](RunOptions& r, std::string_view f, std::string_view v) {
          r.max_memory_bytes = parse_byte_size(v);
          if (!r.max_memory_bytes)
@@ -109,17 +115,27 @@ const Option kOptions[] = {
                        "powers of 1024), got '" +
                            printable(v) + "'");
      }},
-    {"--emission", "", "MODE", "constant, pulse, or pulse:WIDTH_NS (default width: one frame)",
+    {kRender | kInfo, "--max-bucket-memory", "", "SIZE",
+     "the same for the time buckets alone (the fixed part comes on top)",
+     [](RunOptions& r, std::string_view f, std::string_view v) {
+         r.max_bucket_bytes = parse_byte_size(v);
+         if (!r.max_bucket_bytes)
+             bad_value(f,
+                       "must be a size such as 1073741824, 512M, 2G or 1.5GiB (K, M, G, T are "
+                       "powers of 1024), got '" +
+                           printable(v) + "'");
+     }},
+    {kRender | kInfo | kRetime, "--emission", "", "MODE", "constant, pulse, or pulse:WIDTH_NS (default width: one frame)",
      [](RunOptions& r, std::string_view, std::string_view v) {
          std::string spec(v);
          parse_emission_option(spec);  // validates now, so the error comes before any work
          r.overrides.emission = spec;
      }},
-    {"--camera-tof", "", "", "include the way back to the camera in the arrival time",
+    {kRender | kInfo, "--camera-tof", "", "", "include the way back to the camera in the arrival time",
      [](RunOptions& r, std::string_view, std::string_view) { r.overrides.camera_tof = true; }},
-    {"--no-camera-tof", "", "", "leave it out: the camera sees a photon the instant it arrives",
+    {kRender | kInfo, "--no-camera-tof", "", "", "leave it out: the camera sees a photon the instant it arrives",
      [](RunOptions& r, std::string_view, std::string_view) { r.overrides.camera_tof = false; }},
-    {"--strategy", "", "S",
+    {kRender, "--strategy", "", "S",
      "single (default), or frame-by-frame: the baseline, one convergence per frame",
      [](RunOptions& r, std::string_view f, std::string_view v) {
          if (v == "single")
@@ -129,34 +145,59 @@ const Option kOptions[] = {
          else
              bad_value(f, "must be single or frame-by-frame, got '" + printable(v) + "'");
      }},
-    {"--threads", "", "N", "worker threads (default 0: all cores)",
+    {kRender | kRetime, "--threads", "", "N", "worker threads (default 0: all cores)",
      [](RunOptions& r, std::string_view f, std::string_view v) {
          r.threads = int_value(f, v, 0, limits::kMaxThreads);
      }},
-    {"--ranks", "", "N",
-     "info: memory per rank when N MPI ranks share the render (mpirun -np N sets it for render)",
+    {kInfo, "--ranks", "", "N",
+     "memory per rank when N MPI ranks share the render (under mpirun the rank count is used)",
      [](RunOptions& r, std::string_view f, std::string_view v) {
          r.ranks = int_value(f, v, 1, 1 << 20);
      }},
-    {"--stats", "", "FILE.json", "write machine-readable run statistics to FILE.json",
+    {kRender, "--stats", "", "FILE.json", "write machine-readable run statistics to FILE.json",
      [](RunOptions& r, std::string_view f, std::string_view v) {
          r.stats_path = path_value(f, v);
      }},
-    {"--exposure", "", "X",
-     "linear exposure multiplier > 0 for tone-mapped output (default: from steady.exr)",
+    {kRender | kRetime, "--exposure", "", "X",
+     "fixed linear exposure multiplier > 0 (default: the mean of the pixels that see no lamp)",
      [](RunOptions& r, std::string_view f, std::string_view v) {
          std::optional<double> x = parse_whole<double>(v);
          if (!x || !std::isfinite(*x) || !(*x > 0))
              bad_value(f, "must be a finite number > 0, got '" + printable(v) + "'");
          r.exposure = *x;
      }},
-    {"--cube", "", "FILE.npy",
+    {kRender, "--cube", "", "FILE.npy",
      "also write the time-resolved stack (frames+2, height, width, RGB float32) as NumPy .npy",
      [](RunOptions& r, std::string_view f, std::string_view v) { r.cube_path = path_value(f, v); }},
-    {"--resume", "", "",
+    {kRender, "--resume", "", "",
      "with --exr-dir: keep the sections whose frames a render of the same settings left there",
      [](RunOptions& r, std::string_view, std::string_view) { r.resume = true; }},
-    {"--no-progress", "", "", "do not show progress on stderr",
+    {kRender | kRetime, "--tone", "", "CURVE",
+     "linear (default: clip at white), filmic (soft shoulder) or log (the darks lifted)",
+     [](RunOptions& r, std::string_view f, std::string_view v) {
+         if (v == "linear") r.tone = ToneCurve::Linear;
+         else if (v == "filmic") r.tone = ToneCurve::Filmic;
+         else if (v == "log") r.tone = ToneCurve::Log;
+         else bad_value(f, "must be linear, filmic or log, got '" + printable(v) + "'");
+     }},
+    {kRender | kRetime, "--exposure-percentile", "", "P",
+     "expose P % of the pixels that see no lamp below white (default: by their mean)",
+     [](RunOptions& r, std::string_view f, std::string_view v) {
+         std::optional<double> x = parse_whole<double>(v);
+         if (!x || !(*x > 0) || !(*x <= 100))
+             bad_value(f, "must be a number in (0, 100], got '" + printable(v) + "'");
+         r.exposure_percentile = *x;
+     }},
+    {kRender | kRetime, "--exposure-follow", "", "",
+     "let the exposure follow the light's energy smoothly from frame to frame (for pulses)",
+     [](RunOptions& r, std::string_view, std::string_view) { r.exposure_follow = true; }},
+    {kRender | kRetime, "--label", "", "WHAT",
+     "time: print each frame's time on the video and PNG frames",
+     [](RunOptions& r, std::string_view f, std::string_view v) {
+         if (v != "time") bad_value(f, "must be time, got '" + printable(v) + "'");
+         r.label_time = true;
+     }},
+    {kRender | kRetime, "--no-progress", "", "", "do not show progress on stderr",
      [](RunOptions& r, std::string_view, std::string_view) { r.progress = false; }},
 };
 
@@ -171,7 +212,60 @@ bool looks_like_option(std::string_view a) {
     return a.starts_with("--") || a == "-h" || find_option(a) != nullptr;
 }
 
+unsigned command_bit(RunOptions::Command c) {
+    switch (c) {
+    case RunOptions::Command::Info: return kInfo;
+    case RunOptions::Command::Retime: return kRetime;
+    default: return kRender;
+    }
+}
+
+const char* command_name(RunOptions::Command c) {
+    switch (c) {
+    case RunOptions::Command::Info: return "info";
+    case RunOptions::Command::Retime: return "retime";
+    default: return "render";
+    }
+}
+
+std::string option_lines(unsigned command) {
+    std::string s;
+    for (const Option& o : kOptions) {
+        if (!(o.commands & command)) continue;
+        std::string names = o.short_name.empty() ? "    " : std::string(o.short_name) + ", ";
+        names += std::string(o.long_name);
+        if (!o.value_name.empty()) names += " " + std::string(o.value_name);
+        names.resize(std::max<size_t>(names.size() + 2, 24), ' ');
+        s += "  " + names + std::string(o.help) + "\n";
+    }
+    return s;
+}
+
 }  // namespace
+
+std::string commands_text() {
+    return "slowlight: slow-motion videos of light, rendered by transient progressive photon mapping\n"
+           "\n"
+           "Commands:\n"
+           "  slowlight render [SCENE.json] -o OUT.mp4 [options]   render a scene (no scene: the built-in demo)\n"
+           "  slowlight info SCENE.json [options]                  what a scene holds, when its light arrives,\n"
+           "                                                       and the memory a render needs\n"
+           "  slowlight retime CUBE.npy -o OUT.mp4 [options]       a constant or pulse video from a --cube file,\n"
+           "                                                       without rendering again\n"
+           "  slowlight COMMAND --help                             that command's options\n"
+           "  slowlight --help, --version\n"
+           "\n"
+           "The scene file format: docs/scene-format.md in the source tree.\n";
+}
+
+void require_an_output(const RunOptions& r) {
+    // Hours of work that end nowhere help no one: ask for an output first.
+    if (r.command == RunOptions::Command::Render && !r.output_given && r.exr_dir.empty() && r.png_dir.empty() &&
+        r.cube_path.empty() && r.stats_path.empty())
+        fail("render writes nothing without an output: add -o out.mp4 (or --exr-dir, --png-dir, --cube, --stats)");
+    if (r.command == RunOptions::Command::Retime && !r.output_given && r.exr_dir.empty() && r.png_dir.empty())
+        fail("retime writes nothing without an output: add -o out.mp4 (or --exr-dir, --png-dir)");
+}
 
 std::optional<uint64_t> parse_byte_size(std::string_view text) {
     size_t digits = 0;
@@ -206,8 +300,12 @@ RunOptions parse_command_line(int argc, const char* const* argv) {
     // Help and version win over everything else on the line, even over mistakes.
     for (int i = 1; i < argc && std::string_view(argv[i]) != "--"; ++i) {
         std::string_view arg = argv[i];
-        if (arg == "--help" || arg == "-h")
+        if (arg == "--help" || arg == "-h") {
             r.command = RunOptions::Command::Help;
+            // `slowlight retime --help`: that command's own help.
+            std::string_view first = argc > 1 ? std::string_view(argv[1]) : std::string_view();
+            if (first == "render" || first == "info" || first == "retime") r.help_topic = std::string(first);
+        }
         else if (arg == "--version")
             r.command = RunOptions::Command::Version;
         else
@@ -215,6 +313,7 @@ RunOptions parse_command_line(int argc, const char* const* argv) {
         return r;
     }
     bool have_command = false, have_scene = false, options_done = false;
+    std::vector<const Option*> given;
     for (int i = 1; i < argc; ++i) {
         std::string_view arg = argv[i];
         const bool positional = options_done || arg.size() < 2 || arg[0] != '-';  // "-" too
@@ -253,7 +352,14 @@ RunOptions parse_command_line(int argc, const char* const* argv) {
             inline_value = true;
         }
         const Option* opt = find_option(name);
-        if (!opt) fail("unknown option '" + printable(name) + "' (see slowlight --help)");
+        if (!opt) {
+            std::vector<std::string_view> names;
+            for (const Option& o : kOptions) names.push_back(o.long_name);
+            const std::string guess = nearest_name(name, names);
+            fail("unknown option '" + printable(name) + "'" + (guess.empty() ? "" : ": did you mean " + guess + "?") +
+                 " (see slowlight --help)");
+        }
+        given.push_back(opt);
         if (opt->value_name.empty()) {
             if (inline_value) fail(std::string(opt->long_name) + " does not take a value");
         } else if (!inline_value) {
@@ -264,36 +370,47 @@ RunOptions parse_command_line(int argc, const char* const* argv) {
         }
         opt->apply(r, opt->long_name, value);
     }
-    if (!have_command) fail("no command given (expected render or info; see slowlight --help)");
+    if (!have_command) fail("no command given (expected render, info or retime; see slowlight --help)");
+    const unsigned command = command_bit(r.command);
+    for (const Option* opt : given)
+        if (!(opt->commands & command))
+            fail(std::string(command_name(r.command)) + " does not use " + std::string(opt->long_name) +
+                 " (see slowlight " + command_name(r.command) + " --help)");
     if (r.command == RunOptions::Command::Info && !have_scene)
         fail("info needs a scene file: slowlight info SCENE.json");
     if (r.command == RunOptions::Command::Retime && !have_scene)
         fail("retime needs a cube file: slowlight retime CUBE.npy -o out.mp4 [--emission ...]");
     if (r.resume && r.exr_dir.empty()) fail("--resume needs --exr-dir, where the finished frames are");
+    if (r.exposure && (r.exposure_percentile || r.exposure_follow))
+        fail("--exposure fixes the exposure; it cannot be combined with --exposure-percentile or --exposure-follow");
     return r;
 }
 
-std::string usage_text() {
-    std::string s =
-        "slowlight: slow-motion videos of light, rendered by transient progressive photon mapping\n"
-        "\n"
-        "Usage:\n"
-        "  slowlight render [SCENE.json] [options]   render a scene (no scene: the built-in demo)\n"
-        "  slowlight info SCENE.json [options]       scene summary and memory needed per section "
-        "count\n"
-        "  slowlight retime CUBE.npy [options]       make a constant or pulse video from a --cube\n"
-        "                                            file without rendering again\n"
-        "  slowlight --version                       print the version\n"
-        "  slowlight --help, -h                      print this help (also: slowlight render "
-        "--help)\n"
-        "\n"
-        "Options (given as --opt VALUE or --opt=VALUE; they override the scene file):\n";
-    for (const Option& o : kOptions) {
-        std::string names = o.short_name.empty() ? "    " : std::string(o.short_name) + ", ";
-        names += std::string(o.long_name);
-        if (!o.value_name.empty()) names += " " + std::string(o.value_name);
-        names.resize(std::max<size_t>(names.size() + 2, 24), ' ');
-        s += "  " + names + std::string(o.help) + "\n";
+std::string usage_text(const std::string& topic) {
+    std::string s;
+    if (topic.empty()) {
+        s = commands_text() +
+            "\nOptions (given as --opt VALUE or --opt=VALUE; they override the scene file; each command\n"
+            "refuses the ones it does not use):\n" +
+            option_lines(kRender | kInfo | kRetime);
+    } else if (topic == "render") {
+        s = "slowlight render [SCENE.json] [options]\n"
+            "  Renders the scene (no scene: the built-in Cornell box demo). At least one output is needed:\n"
+            "  -o, --exr-dir, --png-dir, --cube or --stats. The scene format is described in\n"
+            "  docs/scene-format.md.\n\nOptions:\n" +
+            option_lines(kRender);
+    } else if (topic == "info") {
+        s = "slowlight info SCENE.json [options]\n"
+            "  Prints the scene's size, the time light needs to cross it, when the first and last direct\n"
+            "  light should reach the camera, its triangles, and the memory a render needs per section\n"
+            "  count K (with --max-memory SIZE: the K a render would pick). Renders nothing.\n\nOptions:\n" +
+            option_lines(kInfo);
+    } else {
+        s = "slowlight retime CUBE.npy [options]\n"
+            "  Makes a video from a cube written by `slowlight render --cube CUBE.npy`: the constant\n"
+            "  emission video, or a pulse video of any whole number of frame widths, without\n"
+            "  rendering again. At least one output is needed: -o, --exr-dir or --png-dir.\n\nOptions:\n" +
+            option_lines(kRetime);
     }
     s += "\nTimes are in nanoseconds, lengths in meters. Exit status: 0 success, 2 invalid input,\n"
          "1 other failure, 130 interrupted.\n";

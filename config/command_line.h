@@ -1,7 +1,7 @@
 #pragma once
-// The command line of ../shared/contract.md:
+// The command line:
 //   slowlight render [SCENE.json] [options] | slowlight info SCENE.json [options]
-//   slowlight --version | --help
+//   slowlight retime CUBE.npy [options] | slowlight [COMMAND] --help | slowlight --version
 // Options may come before or after the scene, as `--opt value` or `--opt=value`; a later
 // option overrides an earlier one. Errors throw InputError "command line: <what>".
 #include <cstdint>
@@ -15,8 +15,15 @@ namespace sl {
 
 RunOptions parse_command_line(int argc, const char* const* argv);
 
-// The --help text: every command and option, one line each.
-std::string usage_text();
+// InputError when render or retime would write nothing at all (before any work starts).
+void require_an_output(const RunOptions& options);
+
+// The --help text: every command and option, one line each; with a topic ("render", "info",
+// "retime"), that command's own help with only the options it uses.
+std::string usage_text(const std::string& topic = "");
+
+// The commands, one line each: what `slowlight` alone prints after its error line.
+std::string commands_text();
 
 // A byte count such as "512M", "2G", "1.5GiB", "1024": K, M, G, T are binary multiples
 // (1024), an optional trailing B or iB, any case. Nothing when malformed, zero or too large.

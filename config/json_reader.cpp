@@ -1,5 +1,7 @@
 #include "config/json_reader.h"
 
+#include "config/nearest_name.h"
+
 #include <algorithm>
 #include <cmath>
 #include <set>
@@ -174,7 +176,9 @@ void JsonObject::expect_keys(std::initializer_list<std::string_view> allowed) co
         if (std::find(allowed.begin(), allowed.end(), item.key()) != allowed.end()) continue;
         std::string list;
         for (std::string_view k : allowed) list += (list.empty() ? "" : ", ") + std::string(k);
-        fail(item.key(), "unknown key (expected one of: " + list + ")");
+        const std::string guess = nearest_name(item.key(), allowed);
+        fail(item.key(), "unknown key" + (guess.empty() ? std::string() : ": did you mean '" + guess + "'?") +
+                             " (expected one of: " + list + ")");
     }
 }
 
@@ -259,7 +263,9 @@ int JsonObject::choice(std::string_view key,
     std::string list;
     for (std::string_view c : choices)
         list += (list.empty() ? "\"" : ", \"") + std::string(c) + "\"";
-    fail(key, "must be one of " + list + ", got " + describe_json(v));
+    const std::string guess = v.is_string() ? nearest_name(v.get<std::string>(), choices) : std::string();
+    fail(key, "must be one of " + list + ", got " + describe_json(v) +
+                  (guess.empty() ? std::string() : " (did you mean \"" + guess + "\"?)"));
 }
 
 int JsonObject::choice(std::string_view key, std::initializer_list<std::string_view> choices,

@@ -1,5 +1,5 @@
 #pragma once
-// Reading and validating scene files (format: ../shared/contract.md). Everything is checked up
+// Reading and validating scene files (format: docs/scene-format.md). Everything is checked up
 // front; any problem throws InputError with one line
 //   `<file>: key '<dotted.key.path>': <what is wrong>`   or   `<file>: line L, column C: ...`
 // (the caller prefixes "error: "). The result is in meters, nanoseconds and per-meter units.

@@ -9,6 +9,9 @@ namespace sl {
 
 enum class Strategy { Single, FrameByFrame };
 
+// The curve from exposed linear radiance to display values (before the sRGB encoding).
+enum class ToneCurve { Linear, Filmic, Log };
+
 struct RenderOverrides {
     std::optional<int> frames, passes, width, height;
     std::optional<int64_t> photons;
@@ -20,6 +23,7 @@ struct RenderOverrides {
 struct RunOptions {
     enum class Command { Render, Info, Retime, Help, Version };
     Command command = Command::Render;
+    std::string help_topic;  // Help: "render", "info", "retime", or empty for everything
     std::string scene_path;  // empty: built-in default demo scene (retime: the cube file)
     std::string output;      // video path, "-" for YUV4MPEG2 on stdout; empty: no video
     bool output_given = false;
@@ -27,8 +31,13 @@ struct RunOptions {
     std::string cube_path;  // --cube: the time-resolved stack as a NumPy .npy file
     bool resume = false;    // --resume: keep sections whose frames are already in --exr-dir
     std::optional<int> sections;
-    std::optional<uint64_t> max_memory_bytes;
+    std::optional<uint64_t> max_memory_bytes;  // the whole process
+    std::optional<uint64_t> max_bucket_bytes;  // the time buckets alone
     std::optional<double> exposure;  // linear multiplier; default from the steady image
+    std::optional<double> exposure_percentile;  // expose this percentile to white instead of the mean
+    bool exposure_follow = false;    // per-frame exposure that follows the light's energy
+    ToneCurve tone = ToneCurve::Linear;
+    bool label_time = false;         // --label time
     Strategy strategy = Strategy::Single;
     int threads = 0;  // 0: all cores
     int ranks = 0;    // --ranks (info: plan for N MPI ranks); under MPI, the ranks running

@@ -60,7 +60,7 @@ struct LightDesc {
     Vec3 direction{0, -1, 0};   // spot, laser (unit length after validation)
     Vec3 power;                 // W: point, spot, laser
     Vec3 radiance;              // W sr^-1 m^-2: quad (front side = edge1 x edge2)
-    float cone_deg = 30;        // spot: half-angle of the cone
+    float cone_deg = 30;        // spot: the cone's full opening angle (it reaches cone_deg / 2 from the axis)
     float radius = 0.002f;      // laser beam radius (m)
 };
 

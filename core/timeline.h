@@ -12,7 +12,7 @@ struct Timeline {
     int frames = 1;
 
     double delta() const { return (end_ns - start_ns) / frames; }
-    // The contract's frame edge: start + k * delta (k = frames gives exactly end).
+    // The frame edge: start + k * delta (k = frames gives exactly end).
     double edge(int64_t k) const {
         return k == frames ? end_ns : start_ns + static_cast<double>(k) * delta();
     }

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <fstream>
 #include <iostream>
 #include <memory>
 #include <unistd.h>
@@ -16,6 +17,8 @@
 #include "core/errors.h"
 #include "pipeline/distributed/mpi_launch.h"
 #include "pipeline/distributed/rank_start.h"
+#include "config/text_util.h"
+#include "pipeline/exposure.h"
 #include "pipeline/frame_outputs.h"
 #include "pipeline/memory_plan.h"
 #include "pipeline/progress.h"
@@ -24,6 +27,7 @@
 #include "pipeline/retime.h"
 #include "pipeline/run_stats.h"
 #include "pipeline/settings_hash.h"
+#include "pipeline/scene_checks.h"
 #include "pipeline/scene_info.h"
 
 namespace sl {
@@ -73,7 +77,29 @@ void check_fits_machine(const MemoryPlan& plan) {
                          format_bytes(ram) + "; use --sections, --max-memory, fewer frames or a smaller image");
 }
 
+// The last line of a run: what was written, how many frames, how long it took.
+void print_final_line(const FrameOutputs& outputs, const std::string& stats_path,
+                      std::chrono::steady_clock::time_point t0) {
+    std::string what = outputs.summary();
+    if (!stats_path.empty()) what += (what.empty() ? "" : ", ") + stats_path + " (statistics)";
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    std::fprintf(stderr, "slowlight: wrote %s in %.1f s\n", what.c_str(), seconds);
+}
+
+// `slowlight info cube.npy`: a cube is not a scene; say what to do with it.
+void refuse_cube_as_scene(const std::string& path) {
+    std::ifstream f(path, std::ios::binary);
+    if (!f) return;  // missing: the scene reader says so
+    char magic[6] = {};
+    f.read(magic, 6);
+    const bool npy = f.gcount() == 6 && std::string_view(magic, 6) == "\x93NUMPY";
+    if (npy || path.ends_with(".npy"))
+        throw InputError(printable(path) + ": this is a transient cube (render --cube), not a scene; make a video of it with "
+                         "slowlight retime " + printable(path) + " -o out.mp4");
+}
+
 SceneDesc load_scene(const RunOptions& o) {
+    if (!o.scene_path.empty()) refuse_cube_as_scene(o.scene_path);
     SceneDesc scene = o.scene_path.empty() ? parse_default_scene() : parse_scene_file(o.scene_path);
     apply_overrides(scene, o.overrides);
     return scene;
@@ -106,7 +132,10 @@ int render(RunOptions o) {
 
     RenderContext ctx(scene);  // meshes and the BVH: input errors here come before any output exists
     ctx.exchange = ex;
+    if (root)
+        for (const std::string& w : scene_warnings(ctx, scene_facts(ctx))) std::fprintf(stderr, "%s\n", w.c_str());
 
+    require_an_output(o);  // after every check of the input, before any work
     OutputSettings out;
     out.video = o.output;
     out.exr_dir = o.exr_dir;
@@ -119,6 +148,9 @@ int render(RunOptions o) {
     out.start_ns = scene.time.start_ns;
     out.end_ns = scene.time.end_ns;
     out.exposure = o.exposure;
+    out.tone = o.tone;
+    out.label_time = o.label_time;
+    if (!o.cube_path.empty()) out.emitter_runs = mask_runs(emitter_pixels(ctx));
     out.metadata = {{"slowlight:version", SLOWLIGHT_VERSION}, {"slowlight:scene", scene.source},
                     {kFingerprintKey, fingerprint}};
     // Only rank 0 writes; the others assemble their pixels and send them to it.
@@ -128,6 +160,8 @@ int render(RunOptions o) {
     job.ctx = &ctx;
     job.plan = plan;
     job.strategy = o.strategy;
+    job.exposure_rule.percentile = o.exposure_percentile;
+    job.exposure_rule.follow = o.exposure_follow;
     if (o.resume) job.on_disk = sections_on_disk(outputs, plan_sections(ctx, plan, o.strategy), fingerprint);
     if (ex) {  // from here on every rank renders, or none does
         const int status = agree_to_start(*ex, 0, "");
@@ -178,12 +212,24 @@ int render(RunOptions o) {
         if (root) std::fprintf(stderr, "slowlight: interrupted; %lld frames written\n", static_cast<long long>(outputs.frames_written));
         return 130;
     }
+    if (!root) return 0;  // rank 0 speaks for the job
+    if (stats.steady_black)
+        std::fprintf(stderr,
+                     "warning: %s: no light reached the camera except straight from the lights: every frame is black "
+                     "but for them (are the lights pointing away, or outside the room? see slowlight info)\n",
+                     scene.source.c_str());
+    print_final_line(outputs, o.stats_path, t0);
     return 0;
 }
 
 }  // namespace
 
 int run_cli(int argc, char** argv) {
+    if (argc <= 1) {  // `slowlight` alone: what it can do
+        std::fprintf(stderr, "error: command line: no command given (expected render, info or retime)\n\n%s",
+                     commands_text().c_str());
+        return 2;
+    }
     // Under an MPI launcher with several processes: MPI, through its plugin (else nothing).
     DistributedStart dist = start_distributed(argc, argv);
     if (!dist.error.empty()) {
@@ -208,13 +254,14 @@ int run_cli(int argc, char** argv) {
         RunOptions o = parse_command_line(argc, argv);
         const bool quiet = !g_ranks.root();  // one answer from the job, rank 0's
         switch (o.command) {
-        case RunOptions::Command::Help: if (!quiet) std::cout << usage_text(); return 0;
+        case RunOptions::Command::Help: if (!quiet) std::cout << usage_text(o.help_topic); return 0;
         case RunOptions::Command::Version:
             if (!quiet) std::cout << "slowlight " << SLOWLIGHT_VERSION << "\n";
             return 0;
         case RunOptions::Command::Info: {
             SceneDesc scene = load_scene(o);
-            if (!quiet) print_scene_info(std::cout, scene, g_ranks.ex ? g_ranks.ex->ranks() : std::max(1, o.ranks));
+            if (g_ranks.ex) o.ranks = g_ranks.ex->ranks();
+            if (!quiet) print_scene_info(std::cout, std::cerr, scene, o);
             return 0;
         }
         case RunOptions::Command::Retime:

@@ -17,6 +17,17 @@
 namespace sl {
 namespace {
 
+// A number as text that reads back to the same double.
+std::string exact(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.17g", v);
+    return buf;
+}
+
+const char* tone_name(ToneCurve t) {
+    return t == ToneCurve::Filmic ? "filmic" : t == ToneCurve::Log ? "log" : "linear";
+}
+
 void make_output_dir(const std::string& dir, const char* flag) {
     std::error_code ec;
     std::filesystem::create_directories(dir, ec);
@@ -51,6 +62,10 @@ void write_cube_sidecar(const OutputSettings& s) {
     j["fps"] = s.fps;
     j["width"] = s.width;
     j["height"] = s.height;
+    // Pixels that see a lamp directly, as [first pixel, count] runs (row-major, row 0 at the top):
+    // retime leaves them out of the exposure, as render does.
+    j["emitter_pixels"] = nlohmann::json::array();
+    for (auto [first, count] : s.emitter_runs) j["emitter_pixels"].push_back({first, count});
     const std::string path = s.cube + ".json", temp = temp_sibling(path);
     {
         std::ofstream f(temp);
@@ -77,6 +92,7 @@ FrameOutputs::FrameOutputs(const OutputSettings& s) : settings_(s), exposure_(s.
         encoder_ = VideoEncoder::open(v);
     }
     if (!s.cube.empty()) cube_ = std::make_unique<NpyCubeWriter>(s.cube, s.frames + 2, s.height, s.width);
+    if (s.label_time && (encoder_ || !s.png_dir.empty())) label_ = std::make_unique<TimeLabel>(s.width, s.height);
     rgb8_.resize(static_cast<size_t>(s.width) * s.height * 3);
 }
 
@@ -96,12 +112,20 @@ void FrameOutputs::write_frame(int index, const std::vector<float>& rgb, bool on
             std::map<std::string, std::string> meta = settings_.metadata;
             double delta = (settings_.end_ns - settings_.start_ns) / std::max(1, settings_.frames);
             meta["slowlight:frame"] = std::to_string(index);
-            meta["slowlight:frame_end_ns"] = std::to_string(settings_.start_ns + (index + 1) * delta);
+            meta["slowlight:frame_start_ns"] = exact(settings_.start_ns + index * delta);
+            meta["slowlight:frame_end_ns"] = exact(settings_.start_ns + (index + 1) * delta);
+            // The exposure and curve the video and PNG frames were made with (linear data here).
+            if (exposure_) meta["slowlight:exposure"] = exact(frame_exposure(index));
+            meta["slowlight:tone"] = tone_name(settings_.tone);
             seconds_exr += timed([&] { write_exr(exr_frame_path(index), w, h, rgb.data(), meta); });
         });
     try {
         if (encoder_ || !settings_.png_dir.empty()) {
-            tone_map_srgb8(rgb.data(), w, h, exposure_.value_or(1.0), rgb8_.data());
+            tone_map_srgb8(rgb.data(), w, h, frame_exposure(index), rgb8_.data(), settings_.tone);
+            if (label_) {
+                const double delta = (settings_.end_ns - settings_.start_ns) / std::max(1, settings_.frames);
+                label_->burn(rgb8_.data(), format_frame_time(settings_.start_ns + (index + 1) * delta, delta));
+            }
             if (!settings_.png_dir.empty())
                 seconds_png += timed([&] { write_png(numbered(settings_.png_dir, "png", index), w, h, rgb8_.data()); });
             if (encoder_) seconds_video += timed([&] { encoder_->write_frame(rgb8_.data()); });
@@ -119,9 +143,25 @@ void FrameOutputs::write_steady(const std::vector<float>& rgb) {
     if (!settings_.exr_dir.empty())
         seconds_exr += timed([&] { write_exr(exr_steady_path(), w, h, rgb.data(), settings_.metadata); });
     if (!settings_.png_dir.empty()) {
-        tone_map_srgb8(rgb.data(), w, h, exposure_.value_or(1.0), rgb8_.data());
+        tone_map_srgb8(rgb.data(), w, h, exposure_.value_or(1.0), rgb8_.data(), settings_.tone);
         seconds_png += timed([&] { write_png((std::filesystem::path(settings_.png_dir) / "steady.png").string(), w, h, rgb8_.data()); });
     }
+}
+
+double FrameOutputs::frame_exposure(int index) const {
+    if (index >= 0 && static_cast<size_t>(index) < per_frame_exposure_.size()) return per_frame_exposure_[index];
+    return exposure_.value_or(1.0);
+}
+
+std::string FrameOutputs::summary() const {
+    const std::string n = std::to_string(frames_written) + (frames_written == 1 ? " frame" : " frames");
+    std::string s;
+    auto add = [&](const std::string& what) { s += (s.empty() ? "" : ", ") + what; };
+    if (encoder_) add((settings_.video == "-" ? std::string("YUV4MPEG2 to stdout") : settings_.video) + " (" + n + ")");
+    if (!settings_.exr_dir.empty()) add(settings_.exr_dir + "/ (" + n + " as EXR, and steady.exr)");
+    if (!settings_.png_dir.empty()) add(settings_.png_dir + "/ (" + n + " as PNG, and steady.png)");
+    if (cube_ && cube_->planes_written() == settings_.frames + 2) add(settings_.cube + " (the cube, and its .json)");
+    return s;
 }
 
 void FrameOutputs::write_cube_plane(const std::vector<float>& rgb) {

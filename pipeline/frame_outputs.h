@@ -8,7 +8,10 @@
 #include <string>
 #include <vector>
 
+#include "config/run_options.h"
+#include "pipeline/exposure.h"
 #include "stages/output/npy_cube.h"
+#include "stages/output/time_label.h"
 #include "stages/output/video_encoder.h"
 
 namespace sl {
@@ -20,7 +23,10 @@ struct OutputSettings {
     int width = 0, height = 0, frames = 0;
     double fps = 24, start_ns = 0, end_ns = 0;
     std::optional<double> exposure;              // fixed by the user
+    ToneCurve tone = ToneCurve::Linear;
+    bool label_time = false;                     // --label time on video and PNG frames
     std::map<std::string, std::string> metadata;  // stored in every EXR header
+    std::vector<std::pair<int64_t, int64_t>> emitter_runs;  // the cube's side-car: pixels that see a lamp
 };
 
 class FrameOutputs {
@@ -29,7 +35,12 @@ public:
 
     bool needs_exposure() const { return !exposure_ && (encoder_ || !settings_.png_dir.empty()); }
     void set_exposure(double e) { exposure_ = e; }
+    void set_exposure_plan(const ExposurePlan& plan) {
+        exposure_ = plan.base;
+        per_frame_exposure_ = plan.per_frame;
+    }
     std::optional<double> exposure() const { return exposure_; }
+    double frame_exposure(int index) const;
     bool wants_cube() const { return cube_ != nullptr; }
 
     // `on_disk`: the EXR is already there (a resumed section), so only the rest is written.
@@ -41,12 +52,17 @@ public:
     std::string exr_frame_path(int index) const;
     std::string exr_steady_path() const;
 
+    // "wrote out.mp4 (48 frames), exr/ (48 EXR frames + steady.exr)": what finish() left behind.
+    std::string summary() const;
+
     double seconds_exr = 0, seconds_png = 0, seconds_video = 0;
     int64_t frames_written = 0;
 
 private:
     OutputSettings settings_;
     std::optional<double> exposure_;
+    std::vector<double> per_frame_exposure_;  // --exposure-follow
+    std::unique_ptr<TimeLabel> label_;
     std::unique_ptr<VideoEncoder> encoder_;
     std::unique_ptr<NpyCubeWriter> cube_;
     std::vector<uint8_t> rgb8_;

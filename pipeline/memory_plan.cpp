@@ -76,11 +76,25 @@ MemoryPlan plan_memory(const SceneDesc& scene, const RunOptions& options) {
             throw InputError("command line: --sections: must be between 1 and the number of frames (" +
                              std::to_string(frames) + "), got " + std::to_string(*options.sections));
         plan.sections = *options.sections;
-    } else if (options.max_memory_bytes) {
-        uint64_t budget = *options.max_memory_bytes;
-        uint64_t one_frame = section_buffer_bytes(scene, frames, ranks);
+    } else if (options.max_memory_bytes || options.max_bucket_bytes) {
+        // --max-memory bounds the whole process: what is left after the fixed part is the
+        // buckets' share. --max-bucket-memory bounds the buckets alone.
+        const uint64_t one_frame = section_buffer_bytes(scene, frames, ranks);
+        uint64_t budget = options.max_bucket_bytes.value_or(UINT64_MAX);
+        if (options.max_memory_bytes) {
+            const uint64_t whole = *options.max_memory_bytes;
+            if (whole < plan.fixed_overhead_bytes + one_frame)
+                throw InputError("command line: --max-memory: " + format_bytes(whole) +
+                                 " cannot hold the process: its fixed part (libraries, scene, photon map, encoder) "
+                                 "is about " + format_bytes(plan.fixed_overhead_bytes) +
+                                 " and one frame per section needs " + format_bytes(one_frame) +
+                                 " of time buckets; give at least " +
+                                 std::to_string((plan.fixed_overhead_bytes + one_frame + (1u << 20) - 1) >> 20) +
+                                 " MiB");
+            budget = std::min(budget, whole - plan.fixed_overhead_bytes);
+        }
         if (one_frame > budget)
-            throw InputError("command line: --max-memory: " + format_bytes(budget) +
+            throw InputError("command line: --max-bucket-memory: " + format_bytes(budget) +
                              " cannot hold even one frame per section; that needs " + std::to_string(one_frame) +
                              " bytes of buffers, plus about " + format_bytes(plan.fixed_overhead_bytes) + " fixed");
         // The smallest K that fits (a section's buffer never grows with K: bisect).
@@ -91,12 +105,12 @@ MemoryPlan plan_memory(const SceneDesc& scene, const RunOptions& options) {
             else lo = mid + 1;
         }
         plan.sections = lo;
+        plan.bucket_budget = budget;
     }
     plan.buffer_bytes_per_section = section_buffer_bytes(scene, plan.sections, ranks);
     // Encoding one section while the next renders needs two sections' buffers: only when a
     // budget says both fit (sections were asked for to save memory, so never by default).
-    plan.overlap = plan.sections > 1 && options.max_memory_bytes &&
-                   2 * plan.buffer_bytes_per_section <= *options.max_memory_bytes;
+    plan.overlap = plan.sections > 1 && plan.bucket_budget && 2 * plan.buffer_bytes_per_section <= plan.bucket_budget;
     return plan;
 }
 

@@ -15,6 +15,7 @@ struct MemoryPlan {
     bool overlap = false;                  // two sections alive: encode one, render the next
     uint64_t buffer_bytes_per_section = 0;  // the largest section's buckets and pixel state
     uint64_t fixed_overhead_bytes = 0;      // independent of K
+    uint64_t bucket_budget = 0;             // what a memory budget left for buckets (0: none given)
     uint64_t buffers_in_flight() const { return buffer_bytes_per_section * (overlap ? 2 : 1); }
 };
 
@@ -23,8 +24,10 @@ int pulse_bucket_count(const SceneDesc& scene);
 uint64_t section_buffer_bytes(const SceneDesc& scene, int sections, int ranks = 1);
 uint64_t fixed_overhead_bytes(const SceneDesc& scene);
 
-// K from --sections, or the smallest K whose buffers (per rank, options.ranks) fit --max-memory (InputError with the
-// number that would fit when even one frame per section is too much), or 1.
+// K from --sections, or the smallest K whose buffers fit the budget, or 1. The budget is
+// --max-memory less the fixed part (the whole process stays within --max-memory), or
+// --max-bucket-memory for the buckets alone; InputError with the number that would fit when
+// even one frame per section is too much.
 MemoryPlan plan_memory(const SceneDesc& scene, const RunOptions& options);
 
 std::string format_bytes(uint64_t bytes);

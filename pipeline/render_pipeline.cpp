@@ -13,7 +13,7 @@
 
 #include "pipeline/distributed/image_gather.h"
 #include "stages/output/exr_io.h"
-#include "stages/output/tone_map.h"
+#include "pipeline/exposure.h"
 #include "stages/render/frame_assembly.h"
 
 namespace sl {
@@ -46,69 +46,79 @@ struct FrameImage {
 // Frames travel by pointer: a flow-graph edge copies its message, and a frame is megabytes.
 using FramePtr = std::shared_ptr<FrameImage>;
 
-// Pulse frames are far dimmer than the steady image, and a seen emitter lights only the first
-// one: expose for the 99th percentile of the lit pixels of all frames pooled (a strided subset
-// of pixels, at most about a million values). With several ranks, each picks the same pixels
-// among its own and rank 0 pools them: the percentile of the same values (0 elsewhere).
-double exposure_of_brightest_pulse_frame(const SectionBuffer& buffer, const RenderContext& ctx) {
-    FrameAssembler pulse(buffer, EmissionMode::Pulse, ctx.pulse_buckets);
-    const size_t pixels = ctx.pixels(), frames = static_cast<size_t>(buffer.layout.frames());
-    const size_t stride = std::max<size_t>(1, pixels * frames / (1u << 20));
-    const PixelShare share = buffer.share;
-    std::vector<float> rgb, lit;
-    auto add = [&](size_t local) {
-        float y = 0.2126f * rgb[3 * local] + 0.7152f * rgb[3 * local + 1] + 0.0722f * rgb[3 * local + 2];
-        if (y > 0 && std::isfinite(y)) lit.push_back(y);
-    };
-    for (int f = buffer.layout.first_frame; f < buffer.layout.end_frame; ++f) {
-        pulse.frame(f, rgb);
-        const size_t first = (f * 7919u) % stride;
-        if (share.ranks == 1) {
-            for (size_t p = first; p < pixels; p += stride) add(p);
-        } else {
-            for (size_t local = 0; local < share.count(); ++local) {
-                const size_t p = share.global(local);
-                if (p >= first && (p - first) % stride == 0) add(local);
-            }
-        }
+// Turns this rank's pixels of an image into the whole image on rank 0 (and an empty one on the
+// other ranks); in one process the image already is whole.
+void whole_image_of(const RenderContext& ctx, std::vector<float>& rgb) {
+    if (ctx.exchange) gather_image(*ctx.exchange, ctx.pixels(), rgb);
+}
+
+// Feeds the meter every image it needs from a buffer that holds every frame (one section, or
+// the preview): the steady image, and the frames themselves for pulses and --exposure-follow.
+// With ranks every rank takes part (the images come together on rank 0, whose meter decides).
+void measure_buffer(const SectionBuffer& buffer, const RenderContext& ctx, ExposureMeter& meter,
+                    const std::vector<float>* steady = nullptr) {
+    std::vector<float> rgb;
+    if (steady) {
+        if (!steady->empty()) meter.add_steady(steady->data(), ctx.pixels());
+    } else if (buffer.layout.has_after) {  // the full-path section: its slots sum to the steady image
+        FrameAssembler(buffer, EmissionMode::Pulse, 1).steady(rgb);  // (no running sum needed for it)
+        whole_image_of(ctx, rgb);
+        if (!rgb.empty()) meter.add_steady(rgb.data(), ctx.pixels());
     }
-    if (ctx.exchange) gather_values(*ctx.exchange, lit);
-    if (lit.empty()) return 1.0;
-    auto nth = lit.begin() + static_cast<std::ptrdiff_t>(0.99 * static_cast<double>(lit.size() - 1));
-    std::nth_element(lit.begin(), nth, lit.end());
-    return 1.0 / *nth;
+    if (!meter.wants_frames()) return;
+    FrameAssembler a(buffer, ctx.scene.emission.mode, ctx.pulse_buckets);
+    for (int f = buffer.layout.first_frame; f < buffer.layout.end_frame; ++f) {
+        a.frame(f, rgb);
+        whole_image_of(ctx, rgb);
+        if (!rgb.empty()) meter.add_frame(f, rgb.data(), ctx.pixels());
+    }
 }
 
 // A short convergence made only to choose the exposure before the first section's frames are
-// encoded (with one section, the section itself provides it): the steady image for constant
-// emission; for pulses, every frame at a quarter of the resolution (a sixteenth of the memory).
-double exposure_from_preview(const RenderContext& ctx, SectionCounters& counters) {
-    const int passes = std::max(2, ctx.scene.render.passes / 8);
+// encoded (with one section, the section itself provides it): the steady image at full
+// resolution when that is all the rule needs; every frame at a quarter of the resolution (a
+// sixteenth of the memory) for pulses and --exposure-follow. The statistic is a mean over
+// pixels, so neither the resolution nor the preview's fewer passes move it.
+// The preview's passes: an eighth of the render's, at least 4 (or all, if fewer).
+int preview_passes(int passes) { return std::min(passes, std::max(4, passes / 8)); }
+
+ExposurePlan exposure_from_preview(const RenderContext& ctx, const ExposureRule& rule, SectionCounters& counters) {
+    const int passes = preview_passes(ctx.scene.render.passes);
     const int64_t photons = ctx.scene.render.photons_per_pass;
-    if (ctx.scene.emission.mode == EmissionMode::Pulse) {
+    const EmissionMode mode = ctx.scene.emission.mode;
+    if (mode == EmissionMode::Pulse || rule.follow) {
         SceneDesc small = ctx.scene;
-        small.camera.width = std::max(8, ctx.width / 4);
-        small.camera.height = std::max(8, ctx.height / 4);
+        // At least 64 pixels a side (or the image's own): a mean over fewer is too noisy.
+        small.camera.width = std::max(std::min(64, ctx.width), ctx.width / 4);
+        small.camera.height = std::max(std::min(64, ctx.height), ctx.height / 4);
         small.render.radius = ctx.initial_radius;
         RenderContext preview(small);
         preview.exchange = ctx.exchange;
-        SectionLayout l = make_section(preview.timeline, EmissionMode::Pulse, preview.pulse_buckets, 1, 0);
+        SectionLayout l = make_section(preview.timeline, mode, preview.pulse_buckets, 1, 0);
         SectionRun run = render_section(preview, l, passes, photons, counters);
-        return exposure_of_brightest_pulse_frame(*run.buffer, preview);
+        ExposureMeter meter(mode, rule, emitter_pixels(preview));
+        measure_buffer(*run.buffer, preview, meter);
+        return meter.decide();
     }
     SectionLayout l;
     l.first_frame = l.end_frame = ctx.timeline.frames;
     l.first_bucket = l.end_frame;
     l.full_paths = true;
     SectionRun run = render_section(ctx, l, passes, photons, counters);
-    FrameAssembler a(*run.buffer, EmissionMode::Constant, 1);
-    std::vector<float> rgb;
-    a.steady(rgb);
-    if (ctx.exchange) {
-        gather_image(*ctx.exchange, ctx.pixels(), rgb);
-        if (rgb.empty()) return 1.0;  // only rank 0 tone-maps
-    }
-    return exposure_from_steady(rgb.data(), ctx.width, ctx.height);
+    ExposureMeter meter(mode, rule, emitter_pixels(ctx));
+    measure_buffer(*run.buffer, ctx, meter);
+    return meter.decide();
+}
+
+// A resumed render of one section: the same images, read back from its EXR files.
+ExposurePlan exposure_from_disk(const RenderContext& ctx, const ExposureRule& rule, const FrameOutputs& outputs) {
+    ExposureMeter meter(ctx.scene.emission.mode, rule, emitter_pixels(ctx));
+    ExrImage steady = read_exr(outputs.exr_steady_path());
+    meter.add_steady(steady.rgb.data(), ctx.pixels());
+    if (meter.wants_frames())
+        for (int f = 0; f < ctx.timeline.frames; ++f)
+            meter.add_frame(f, read_exr(outputs.exr_frame_path(f)).rgb.data(), ctx.pixels());
+    return meter.decide();
 }
 
 }  // namespace
@@ -152,16 +162,18 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameOutputs& outputs, const 
         if (ex) gather_image(*ex, ctx.pixels(), rgb);
     };
 
-    if (exposure_pending && resumed(plan.sections - 1) && mode == EmissionMode::Constant) {
-        ExrImage steady = read_exr(outputs.exr_steady_path());
-        outputs.set_exposure(exposure_from_steady(steady.rgb.data(), ctx.width, ctx.height));
+    // The exposure, before any frame is encoded. With one section the section itself provides it
+    // (below); a finished render resumed from disk is measured on the very frames it wrote, and
+    // more sections on a preview, which is deterministic: a resumed run exposes as the first did.
+    if (exposure_pending && plan.sections == 1 && resumed(0)) {
+        if (root) outputs.set_exposure_plan(exposure_from_disk(ctx, job.exposure_rule, outputs));
         exposure_pending = false;
-    } else if (exposure_pending && (plan.sections > 1 || resumed(0))) {
+    } else if (exposure_pending && plan.sections > 1) {
         auto t0 = Clock::now();
-        const double e = exposure_from_preview(ctx, counters);
-        if (root) outputs.set_exposure(e);
+        const ExposurePlan e = exposure_from_preview(ctx, job.exposure_rule, counters);
+        if (root) outputs.set_exposure_plan(e);
         exposure_pending = false;
-        stats.passes_run += std::max(2, passes / 8);
+        stats.passes_run += preview_passes(passes);
         malloc_trim(0);  // the preview's photon map and buffer: back to the system
         stats.exposure_pass = since(t0);
     }
@@ -232,14 +244,19 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameOutputs& outputs, const 
                     std::vector<float> steady;
                     s.assembler->steady(steady);
                     whole_image(steady);
-                    if (exposure_pending) {
-                        const double e = mode == EmissionMode::Pulse
-                                             ? exposure_of_brightest_pulse_frame(*s.run.buffer, ctx)
-                                             : (root ? exposure_from_steady(steady.data(), ctx.width, ctx.height) : 1.0);
-                        if (root) outputs.set_exposure(e);
+                    const std::vector<uint8_t> lamps = emitter_pixels(ctx);
+                    if (exposure_pending) {  // one section: it holds every frame
+                        ExposureMeter meter(mode, job.exposure_rule, lamps);
+                        measure_buffer(*s.run.buffer, ctx, meter, &steady);
+                        if (root) outputs.set_exposure_plan(meter.decide());
                         exposure_pending = false;
                     }
-                    if (root) outputs.write_steady(steady);
+                    if (root) {
+                        ExposureMeter light(EmissionMode::Constant, {}, lamps);
+                        light.add_steady(steady.data(), ctx.pixels());
+                        stats.steady_black = light.decide().black;
+                        outputs.write_steady(steady);
+                    }
                 }
             }
             s.assembler->frame(job_in.frame, img.rgb);

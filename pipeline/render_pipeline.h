@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "config/run_options.h"
+#include "pipeline/exposure.h"
 #include "pipeline/frame_outputs.h"
 #include "pipeline/memory_plan.h"
 #include "stages/render/render_context.h"
@@ -33,6 +34,7 @@ struct PipelineStats {
     int ranks = 1;
     uint64_t exchanged_sent[2] = {0, 0}, exchanged_received[2] = {0, 0};
     double photon_transfer_seconds = 0;  // rank 0's time moving photon records (not waiting)
+    bool steady_black = false;  // nothing but the emitters themselves reached the camera
 };
 
 // (section, passes done in it) after every pass.
@@ -43,6 +45,7 @@ struct PipelineJob {
     MemoryPlan plan;
     Strategy strategy = Strategy::Single;
     std::vector<bool> on_disk;  // per section: already rendered (--resume)
+    ExposureRule exposure_rule;
 };
 
 std::vector<SectionLayout> plan_sections(const RenderContext& ctx, const MemoryPlan& plan, Strategy strategy);

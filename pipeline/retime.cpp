@@ -1,14 +1,17 @@
 #include "pipeline/retime.h"
 
+#include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "config/command_line.h"
 #include "config/parse_scene.h"
 #include "core/errors.h"
 #include "pipeline/frame_outputs.h"
 #include "stages/output/npy_cube.h"
-#include "stages/output/tone_map.h"
+#include "pipeline/exposure.h"
 
 namespace sl {
 namespace {
@@ -16,6 +19,7 @@ namespace {
 struct CubeInfo {
     double start_ns = 0, end_ns = 0, fps = 24;
     int frames = 0, width = 0, height = 0;
+    std::vector<std::pair<int64_t, int64_t>> emitter_runs;  // pixels that see a light (none in older cubes)
 };
 
 CubeInfo read_sidecar(const std::string& cube_path) {
@@ -31,6 +35,8 @@ CubeInfo read_sidecar(const std::string& cube_path) {
         c.frames = j.at("frames").get<int>();
         c.width = j.at("width").get<int>();
         c.height = j.at("height").get<int>();
+        if (j.contains("emitter_pixels"))
+            for (const auto& run : j.at("emitter_pixels")) c.emitter_runs.emplace_back(run.at(0).get<int64_t>(), run.at(1).get<int64_t>());
         if (!(c.end_ns > c.start_ns) || c.frames < 1 || !(c.fps > 0)) throw InputError(path + ": inconsistent values");
         return c;
     } catch (const nlohmann::json::exception& e) {
@@ -38,25 +44,18 @@ CubeInfo read_sidecar(const std::string& cube_path) {
     }
 }
 
-void refuse(bool given, const char* flag) {
-    if (given) throw InputError(std::string("command line: ") + flag + " does not apply to retime");
-}
-
 }  // namespace
 
 int retime(const RunOptions& o) {
+    const auto t0 = std::chrono::steady_clock::now();
+    // The command line has refused every option retime does not use.
     const RenderOverrides& ov = o.overrides;
-    refuse(ov.frames.has_value(), "--frames");
-    refuse(ov.passes.has_value(), "--passes");
-    refuse(ov.photons.has_value(), "--photons");
-    refuse(ov.width.has_value() || ov.height.has_value(), "--width/--height");
-    refuse(o.sections.has_value() || o.max_memory_bytes.has_value(), "--sections/--max-memory");
-    refuse(!o.cube_path.empty() || o.resume, "--cube/--resume");
 
     NpyCube cube = read_npy_cube(o.scene_path);
     CubeInfo info = read_sidecar(o.scene_path);
     if (cube.planes != info.frames + 2 || cube.width != info.width || cube.height != info.height)
         throw InputError(o.scene_path + ": the array's shape does not match its side-car file");
+    require_an_output(o);
 
     EmissionDesc emission;
     if (ov.emission) emission = parse_emission_option(*ov.emission);
@@ -70,7 +69,7 @@ int retime(const RunOptions& o) {
         width_buckets = static_cast<int>(std::round(m));
     }
 
-    const size_t values = static_cast<size_t>(cube.width) * cube.height * 3;
+    const size_t pixels = static_cast<size_t>(cube.width) * cube.height, values = pixels * 3;
     std::vector<float> steady(values, 0.0f);
     for (int p = 0; p < cube.planes; ++p)
         for (size_t i = 0; i < values; ++i) steady[i] += cube.plane(p)[i];
@@ -86,15 +85,17 @@ int retime(const RunOptions& o) {
     out.start_ns = info.start_ns;
     out.end_ns = info.end_ns;
     out.exposure = o.exposure;
+    out.tone = o.tone;
+    out.label_time = o.label_time;
     out.metadata = {{"slowlight:retimed_from", o.scene_path}};
     FrameOutputs outputs(out);
-    if (outputs.needs_exposure()) outputs.set_exposure(exposure_from_steady(steady.data(), cube.width, cube.height));
-    outputs.write_steady(steady);
 
+    // Frame k of the video being made (constant: a running sum; pulse: its m buckets).
     std::vector<double> running(values, 0.0);
-    for (size_t i = 0; i < values; ++i) running[i] = cube.plane(0)[i];
     std::vector<float> frame(values);
-    for (int k = 0; k < info.frames; ++k) {
+    auto make_frame = [&](int k) {
+        if (k == 0)
+            for (size_t i = 0; i < values; ++i) running[i] = cube.plane(0)[i];
         if (emission.mode == EmissionMode::Constant) {
             for (size_t i = 0; i < values; ++i) frame[i] = static_cast<float>(running[i] += cube.plane(k + 1)[i]);
         } else {
@@ -103,9 +104,30 @@ int retime(const RunOptions& o) {
             for (int j = std::max(0, k - width_buckets + 1); j <= k; ++j)
                 for (size_t i = 0; i < values; ++i) frame[i] += cube.plane(j + 1)[i];
         }
+    };
+
+    // The exposure render would choose for this video: the same statistic, the same pixels left out.
+    if (outputs.needs_exposure()) {
+        ExposureRule rule;
+        rule.percentile = o.exposure_percentile;
+        rule.follow = o.exposure_follow;
+        ExposureMeter meter(emission.mode, rule, mask_from_runs(info.emitter_runs, pixels));
+        meter.add_steady(steady.data(), pixels);
+        if (meter.wants_frames())
+            for (int k = 0; k < info.frames; ++k) {
+                make_frame(k);
+                meter.add_frame(k, frame.data(), pixels);
+            }
+        outputs.set_exposure_plan(meter.decide());
+    }
+    outputs.write_steady(steady);
+    for (int k = 0; k < info.frames; ++k) {
+        make_frame(k);
         outputs.write_frame(k, frame);
     }
     outputs.finish();
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    std::fprintf(stderr, "slowlight: wrote %s in %.1f s\n", outputs.summary().c_str(), seconds);
     return 0;
 }
 

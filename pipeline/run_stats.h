@@ -1,5 +1,5 @@
 #pragma once
-// --stats FILE.json: machine-readable numbers about a run (the contract's fields and more).
+// --stats FILE.json: machine-readable numbers about a run (times, photons, memory, exposure).
 #include <string>
 
 #include "pipeline/memory_plan.h"

@@ -1,43 +1,95 @@
 #include "pipeline/scene_info.h"
 
 #include <algorithm>
+#include <cstdio>
 
 #include "core/errors.h"
 #include "pipeline/memory_plan.h"
+#include "pipeline/scene_checks.h"
+#include "stages/render/render_context.h"
 
 namespace sl {
+namespace {
 
-void print_scene_info(std::ostream& out, const SceneDesc& s, int ranks) {
-    ranks = std::max(1, ranks);
+std::string fixed(double v, int decimals) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+    return buf;
+}
+
+}  // namespace
+
+void print_scene_info(std::ostream& out, std::ostream& err, const SceneDesc& s, const RunOptions& options) {
+    const int ranks = std::max(1, options.ranks);  // with MPI ranks, memory is per rank
     const double delta = (s.time.end_ns - s.time.start_ns) / s.time.frames;
+    RenderContext ctx(s);
+    SceneFacts f = scene_facts(ctx);
     out << "scene:      " << s.source << "\n"
         << "image:      " << s.camera.width << " x " << s.camera.height << "\n"
         << "shapes:     " << s.shapes.size() << ", materials: " << s.materials.size()
         << ", lights: " << s.lights.size() << (s.medium.present ? ", with a medium" : ", vacuum") << "\n"
+        << "geometry:   " << f.triangles << " triangles, " << f.spheres << " spheres\n"
+        << "size:       " << fixed(f.size.x, 3) << " x " << fixed(f.size.y, 3) << " x " << fixed(f.size.z, 3)
+        << " m (units: " << s.meters_per_unit << " m per unit); light crosses its diagonal of "
+        << fixed(f.diagonal_m, 3) << " m in " << fixed(f.crossing_ns, 2) << " ns\n"
         << "time:       " << s.time.start_ns << " to " << s.time.end_ns << " ns, " << s.time.frames
-        << " frames of " << delta << " ns (" << delta * 0.299792458 << " m of light), " << s.time.fps << " fps\n"
-        << "emission:   " << (s.emission.mode == EmissionMode::Constant ? "constant" : "pulse") << "\n"
+        << " frames of " << delta << " ns (" << delta * kSpeedOfLight << " m of light), " << s.time.fps << " fps\n"
+        << "arrivals:   ";
+    if (f.first_arrival_ns) {
+        out << "light reflected toward the camera arrives from " << fixed(*f.first_arrival_ns, 2) << " ns";
+        if (f.last_direct_arrival_ns)
+            out << "; direct light has reached everything it lights by " << fixed(*f.last_direct_arrival_ns, 2)
+                << " ns";
+        out << (s.render.camera_tof ? " (camera leg included)" : " (camera leg not included)") << "\n";
+    } else {
+        out << "no light shines straight on anything the camera sees (only bounced light will)\n";
+    }
+    out << "emission:   " << (s.emission.mode == EmissionMode::Constant ? "constant" : "pulse") << "\n"
         << "render:     " << s.render.passes << " passes x " << s.render.photons_per_pass << " photons, max_depth "
-        << s.render.max_depth << ", alpha " << s.render.alpha << "\n"
-        << "memory:     fixed overhead about " << format_bytes(fixed_overhead_bytes(s)) << "\n";
-    if (ranks > 1) out << "ranks:      " << ranks << " (MPI): each holds the buffers of 1/" << ranks << " of the pixels\n";
-    out << "  sections K   buffers per section" << (ranks > 1 ? " per rank" : "") << "\n";
+        << s.render.max_depth << ", alpha " << s.render.alpha << "\n";
+    for (const std::string& w : scene_warnings(ctx, f)) err << w << "\n";
+
+    // Memory: the time buckets (what K divides) and the fixed part (what it does not); a
+    // process needs about the sum. --max-memory bounds the sum, --max-bucket-memory the buckets.
+    const uint64_t fixed_part = fixed_overhead_bytes(s);
+    out << "memory:     fixed overhead about " << format_bytes(fixed_part)
+        << " (libraries, scene, photon map, encoder), plus the time buckets of the sections in flight;\n"
+        << "            --max-memory bounds the sum (the whole process), --max-bucket-memory the buckets alone\n";
+    if (ranks > 1) out << "ranks:      " << ranks << " (MPI): each holds the buckets of 1/" << ranks << " of the pixels\n";
+    out << "  sections K   buckets per section" << (ranks > 1 ? " per rank" : "         ") << " whole process" << (ranks > 1 ? " per rank" : "") << "\n";
     for (int k : {1, 2, 4, 8}) {
         if (k > s.time.frames) break;
         uint64_t b = section_buffer_bytes(s, k, ranks);
-        out << "  " << k << (k < 10 ? "            " : "           ") << format_bytes(b) << " (" << b << " bytes)\n";
+        std::string left = "  " + std::to_string(k) + std::string(k < 10 ? 12 : 11, ' ') + format_bytes(b) + " (" +
+                           std::to_string(b) + " bytes)";
+        left.resize(std::max<size_t>(left.size() + 1, 45), ' ');
+        out << left << "about " << format_bytes(b + fixed_part) << "\n";
     }
-    out << "  budget       smallest K (--max-memory)\n";
-    for (uint64_t mib : {64ull, 256ull, 1024ull, 4096ull}) {
+    if (options.max_memory_bytes || options.max_bucket_bytes) {
+        try {
+            MemoryPlan plan = plan_memory(s, options);
+            out << "  with " << (options.max_memory_bytes ? "--max-memory " + format_bytes(*options.max_memory_bytes)
+                                                          : "--max-bucket-memory " + format_bytes(*options.max_bucket_bytes))
+                << ": K = " << plan.sections << " (" << format_bytes(plan.buffer_bytes_per_section)
+                << " of buckets per section, about " << format_bytes(plan.buffers_in_flight() + fixed_part)
+                << " in all)\n";
+        } catch (const InputError& e) {
+            out << "  " << e.what() << "\n";
+        }
+        return;
+    }
+    out << "  --max-memory   smallest K\n";
+    for (uint64_t mib : {256ull, 1024ull, 4096ull}) {
         RunOptions o;
         o.max_memory_bytes = mib << 20;
         o.ranks = ranks;
         std::string label = mib >= 1024 ? std::to_string(mib / 1024) + "G" : std::to_string(mib) + "M";
-        out << "  " << label << std::string(13 - label.size(), ' ');
+        out << "  " << label << std::string(15 - label.size(), ' ');
         try {
             out << plan_memory(s, o).sections << "\n";
         } catch (const InputError&) {
-            out << "does not fit (one frame per section needs " << format_bytes(section_buffer_bytes(s, s.time.frames, ranks)) << ")\n";
+            out << "does not fit (needs at least " << format_bytes(fixed_part + section_buffer_bytes(s, s.time.frames, ranks))
+                << ")\n";
         }
     }
 }

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Sections benchmark (issue 3): the real program, F = 192 frames at 512x512 of the Cornell box,
-# once per K = 1, 2, 4, 8 (--sections K, --stats, -o a temporary .mp4), then with --max-memory at
+# once per K = 1, 2, 4, 8 (--sections K, --stats, -o a temporary .mp4), then with --max-bucket-memory at
 # a few budgets. Prints two tables (and the stage times per K); the numbers come from each run's
 # --stats JSON, parsed with python3's standard library.
 #
@@ -70,7 +70,7 @@ run() {  # run NAME ARGS...: one render, its stats in $tmp/NAME.json, its stderr
 }
 
 for k in $ks; do run "k$k" --sections "$k"; done
-for b in $budgets; do run "mem_$b" --max-memory "$b"; done
+for b in $budgets; do run "mem_$b" --max-bucket-memory "$b"; done
 
 python3 - "$tmp" "$ks" "$budgets" <<'EOF'
 import json, sys
@@ -91,7 +91,7 @@ def load(name):
         s["time_max_rss_bytes"] = 0
     return s
 
-def parse_size(text):  # as --max-memory reads it: K, M, G, T are powers of 1024
+def parse_size(text):  # as --max-bucket-memory reads it: K, M, G, T are powers of 1024
     units = {"": 1, "K": 1 << 10, "M": 1 << 20, "G": 1 << 30, "T": 1 << 40}
     t = text.upper().removesuffix("IB").removesuffix("B")
     u = t[-1] if t and t[-1] in "KMGT" else ""
@@ -126,7 +126,7 @@ for k in ks:
 print()
 
 if budgets:
-    print("Table 2: --max-memory (limit = budget + fixed overhead that info/stats state)")
+    print("Table 2: --max-bucket-memory (limit = budget + fixed overhead that info/stats state)")
     print(f"{'budget':>7} {'K chosen':>8} {'buffers/section MiB':>20} {'overlap':>7} {'in flight MiB':>13} "
           f"{'fixed MiB':>9} {'limit MiB':>9} {'peak RSS MiB':>12} {'wall s':>7} {'within':>6}")
     all_within = True
@@ -150,5 +150,5 @@ if "1" in runs and "4" in runs:
     c = runs["4"]["cpu_seconds"] / runs["1"]["cpu_seconds"]
     print(f"target wall time K=4 <= 3 x K=1:   {t:.3f} -> {'met' if t <= 3 else 'NOT met'} (CPU time ratio {c:.3f})")
 if budgets:
-    print(f"target peak RSS <= --max-memory + fixed overhead at every budget: {'met' if all_within else 'NOT met'}")
+    print(f"target peak RSS <= --max-bucket-memory + fixed overhead at every budget: {'met' if all_within else 'NOT met'}")
 EOF

@@ -1,4 +1,4 @@
-// The command line of the contract: commands, options, sizes, errors and --help.
+// The command line of slowlight: commands, options, sizes, errors and --help.
 #include <gtest/gtest.h>
 
 #include <initializer_list>

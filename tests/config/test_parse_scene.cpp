@@ -1,4 +1,4 @@
-// Valid scenes: values, defaults, units and paths come out as the contract says.
+// Valid scenes: values, defaults, units and paths come out as docs/scene-format.md says.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -241,3 +241,25 @@ TEST(SceneSyntaxErrors, DeepNestingIsRejectedNotACrash) {
     objects += "1" + std::string(depth, '}');
     EXPECT_NE(error_of(objects, "").find("nested more than 64 levels"), std::string::npos);
 }
+
+// A slip of the keyboard is answered with the nearest valid name, for keys and for values.
+TEST(SceneSyntaxErrors, MisspeltKeysAndValuesSuggestTheNearest) {
+    const std::string base = R"({"camera": {"position": [0, 1, 3], "look_at": [0, 1, 0]}, "lights": [)";
+    auto message = [&](const std::string& light) {
+        try {
+            sl::parse_scene_text(base + light + "]}", "s.json", "");
+        } catch (const sl::InputError& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    std::string m = message(R"({"type": "quad", "corner": [0, 2, 0], "edge1": [1, 0, 0], "edge2": [0, 0, 1], "Radiance": [1, 1, 1]})");
+    EXPECT_NE(m.find("key 'lights[0].Radiance': unknown key: did you mean 'radiance'?"), std::string::npos) << m;
+    m = message(R"({"type": "Spot", "position": [0, 2, 0], "power": [1, 1, 1]})");
+    EXPECT_NE(m.find("(did you mean \"spot\"?)"), std::string::npos) << m;
+    m = message(R"({"type": "point", "positoin": [0, 2, 0], "power": [1, 1, 1]})");
+    EXPECT_NE(m.find("did you mean 'position'?"), std::string::npos) << m;
+    // Nothing close: no guess.
+    m = message(R"({"type": "point", "position": [0, 2, 0], "power": [1, 1, 1], "colour": [1, 1, 1]})");
+    EXPECT_EQ(m.find("did you mean"), std::string::npos) << m;
+}

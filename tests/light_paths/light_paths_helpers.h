@@ -15,7 +15,7 @@
 
 namespace sl::lp {
 
-inline constexpr double kC = 0.299792458;  // m/ns, the contract's speed of light
+inline constexpr double kC = 0.299792458;  // m/ns, the speed of light
 
 struct Rendered {
     std::vector<std::vector<float>> frames;  // one RGB image per frame, row 0 at the top

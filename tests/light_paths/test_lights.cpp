@@ -1,4 +1,4 @@
-// Spot lights and lasers (issue 6, contract: a spot spreads its power evenly over its cone; a
+// Spot lights and lasers (issue 6: a spot spreads its power evenly over its cone; a
 // laser is a thin collimated beam of its power).
 //
 // Spot: a camera looking straight down at a plane sees every pixel cover the same plane area a^2

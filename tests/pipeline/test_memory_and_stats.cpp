@@ -61,18 +61,18 @@ TEST(MaxMemory, PicksTheSmallestSectionCountThatFits) {
     ASSERT_GT(b2, 0u);
 
     // Exactly K = 1's buffers: K = 1.
-    nlohmann::json s = stats_of(dir, {"--max-memory", std::to_string(b1)});
+    nlohmann::json s = stats_of(dir, {"--max-bucket-memory", std::to_string(b1)});
     EXPECT_EQ(s["sections"], 1);
     EXPECT_LE(s["buffer_bytes_per_section"].get<uint64_t>(), b1);
 
     // Exactly K = 2's: K = 2 (K = 1 does not fit).
-    s = stats_of(dir, {"--max-memory", std::to_string(b2)});
+    s = stats_of(dir, {"--max-bucket-memory", std::to_string(b2)});
     EXPECT_EQ(s["sections"], 2);
     EXPECT_EQ(s["buffer_bytes_per_section"].get<uint64_t>(), b2);
 
     // One byte less than K = 2's: more sections, whose buffers fit, and one fewer would not.
     const uint64_t budget = b2 - 1;
-    s = stats_of(dir, {"--max-memory", std::to_string(budget)});
+    s = stats_of(dir, {"--max-bucket-memory", std::to_string(budget)});
     const int k = s.value("sections", 0);
     EXPECT_GT(k, 2);
     EXPECT_LE(s["buffer_bytes_per_section"].get<uint64_t>(), budget);
@@ -82,11 +82,11 @@ TEST(MaxMemory, PicksTheSmallestSectionCountThatFits) {
     }
 
     // The budget also takes the usual suffixes (powers of 1024).
-    s = stats_of(dir, {"--max-memory", "1G"});
+    s = stats_of(dir, {"--max-bucket-memory", "1G"});
     EXPECT_EQ(s["sections"], 1);
 }
 
-// A budget below one frame per section: exit 2, one `error:` line naming --max-memory, before any
+// A budget below one frame per section: exit 2, one `error:` line naming --max-bucket-memory, before any
 // rendering, that states a size which, given back as the budget, works. Several image sizes, so
 // that the stated number is also checked where rounding it for display could go down.
 TEST(MaxMemory, TooSmallForOneFramePerSectionSaysWhatWouldFit) {
@@ -99,11 +99,11 @@ TEST(MaxMemory, TooSmallForOneFramePerSectionSaysWhatWouldFit) {
         const std::string video = dir.file("out.mp4");
 
         ProgramResult r = run_program(
-            small_render("", {"--max-memory", std::to_string(one_frame - 1), "-o", video}, kFrames, 1, 1000, w, h));
+            small_render("", {"--max-bucket-memory", std::to_string(one_frame - 1), "-o", video}, kFrames, 1, 1000, w, h));
         SL_EXPECT_EXIT(r, 2);
         std::vector<std::string> errors = r.error_lines();
         ASSERT_EQ(errors.size(), 1u) << r.err;
-        EXPECT_NE(errors[0].find("--max-memory"), std::string::npos) << errors[0];
+        EXPECT_NE(errors[0].find("--max-bucket-memory"), std::string::npos) << errors[0];
         EXPECT_EQ(r.err.find("section 1/"), std::string::npos) << "rendering started";
         EXPECT_FALSE(std::filesystem::exists(video));
 
@@ -118,7 +118,7 @@ TEST(MaxMemory, TooSmallForOneFramePerSectionSaysWhatWouldFit) {
 
         // Given back as the budget, the stated number works.
         ProgramResult again;
-        nlohmann::json s = stats_of(dir, {"--max-memory", std::to_string(static_cast<uint64_t>(std::ceil(stated)))},
+        nlohmann::json s = stats_of(dir, {"--max-bucket-memory", std::to_string(static_cast<uint64_t>(std::ceil(stated)))},
                                     &again, "", w, h);
         EXPECT_EQ(again.exit_code, 0) << again.err;
         EXPECT_GE(s.value("sections", 0), 1) << again.err;
@@ -126,20 +126,48 @@ TEST(MaxMemory, TooSmallForOneFramePerSectionSaysWhatWouldFit) {
     }
 }
 
-// The promise: the process never exceeds --max-memory by more than the fixed overhead
-// that `info` (and --stats' fixed_overhead_bytes) states. Checked on a budget that forces several
-// sections, with a video being encoded.
-TEST(MaxMemory, PeakRssWithinBudgetPlusStatedFixedOverhead) {
+// --max-bucket-memory bounds the buckets: the process never exceeds it by more than the fixed
+// overhead that `info` (and --stats' fixed_overhead_bytes) states. Checked on a budget that
+// forces several sections, with a video being encoded.
+TEST(MaxMemory, PeakRssWithinBucketBudgetPlusStatedFixedOverhead) {
     ScratchDir dir;
     const uint64_t b2 = buffer_bytes_for_k(dir, 2);
     ASSERT_GT(b2, 0u);
-    nlohmann::json s = stats_of(dir, {"--max-memory", std::to_string(b2), "-o", dir.file("out.mp4")});
+    nlohmann::json s = stats_of(dir, {"--max-bucket-memory", std::to_string(b2), "-o", dir.file("out.mp4")});
     ASSERT_TRUE(s.contains("fixed_overhead_bytes"));
     const uint64_t rss = s["peak_rss_bytes"].get<uint64_t>(), fixed = s["fixed_overhead_bytes"].get<uint64_t>();
     RecordProperty("peak_rss_bytes", std::to_string(rss));
     RecordProperty("fixed_overhead_bytes", std::to_string(fixed));
     EXPECT_LE(rss, b2 + fixed) << "peak RSS " << rss / 1048576.0 << " MiB, budget " << b2 / 1048576.0
                                << " MiB + stated fixed overhead " << fixed / 1048576.0 << " MiB";
+}
+
+// --max-memory bounds the whole process: a budget between K = 1's and K = 2's whole need gives
+// K = 2 (or more), and the peak RSS stays within it.
+TEST(MaxMemory, WholeProcessStaysWithinMaxMemory) {
+    ScratchDir dir;
+    const int side = 384;
+    nlohmann::json s1 = stats_of(dir, {"--sections", "1"}, nullptr, "", side, side);
+    nlohmann::json s2 = stats_of(dir, {"--sections", "2"}, nullptr, "", side, side);
+    const uint64_t b1 = s1.value("buffer_bytes_per_section", uint64_t{0}), b2 = s2.value("buffer_bytes_per_section", uint64_t{0});
+    const uint64_t fixed = s1.value("fixed_overhead_bytes", uint64_t{0});
+    ASSERT_GT(b1, b2 + (4u << 20)) << "the buffers must differ by more than the fixed part's jitter";
+    const uint64_t budget = fixed + (b1 + b2) / 2;
+    nlohmann::json s = stats_of(dir, {"--max-memory", std::to_string(budget), "-o", dir.file("out.mp4")}, nullptr, "",
+                                side, side);
+    EXPECT_GE(s.value("sections", 0), 2);
+    const uint64_t rss = s.value("peak_rss_bytes", uint64_t{0});
+    RecordProperty("peak_rss_bytes", std::to_string(rss));
+    EXPECT_LE(rss, budget) << "peak RSS " << rss / 1048576.0 << " MiB over --max-memory " << budget / 1048576.0 << " MiB";
+
+    // Too small for the fixed part and one frame per section: exit 2, one line that names
+    // --max-memory and the size that would do.
+    ProgramResult r = run_program(small_render("", {"--max-memory", "64M", "-o", dir.file("x.mp4")}, kFrames, 1, 1000,
+                                               side, side));
+    SL_EXPECT_EXIT(r, 2);
+    ASSERT_EQ(r.error_lines().size(), 1u) << r.err;
+    EXPECT_NE(r.error_lines()[0].find("--max-memory: 64.0 MiB cannot hold the process"), std::string::npos) << r.err;
+    EXPECT_NE(r.error_lines()[0].find("give at least"), std::string::npos) << r.err;
 }
 
 // `slowlight info` prints the buffer bytes per section for K = 1, 2, 4, 8 and the fixed overhead,

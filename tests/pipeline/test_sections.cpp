@@ -85,7 +85,7 @@ TEST(Sections, FourSectionsMatchOneWithinNoise) {
     for (int k = 0; k < frames; ++k) {
         const double m1 = masked_mean(k1.frames[k], mask), m4 = masked_mean(k4.frames[k], mask),
                      ms = masked_mean(other.frames[k], mask);
-        // Whole-image means (the contract's "mean radiance"), emitter included.
+        // Whole-image means (mean radiance), emitter included.
         EXPECT_NEAR(k4.frames[k].mean, k1.frames[k].mean, 0.05 * k1.frames[k].mean) << "frame " << k;
         char line[128];
         std::snprintf(line, sizeof line, "%5d  %13.6f  %12.5f  %13.5f\n", k, m1, m1 > 0 ? std::abs(m4 - m1) / m1 : 0.0,

@@ -1,4 +1,4 @@
-// Arrival times on bucket edges, at start, at end and beyond land where the contract says.
+// Arrival times on bucket edges, at start, at end and beyond land where docs/scene-format.md says.
 #include <gtest/gtest.h>
 
 #include <cmath>

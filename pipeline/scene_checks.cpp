@@ -1,0 +1,164 @@
+#include "pipeline/scene_checks.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "config/text_util.h"
+#include "stages/render/render_context.h"
+
+namespace sl {
+namespace {
+
+constexpr int kGrid = 64;            // camera rays per image side
+constexpr int kEnclosureRays = 512;  // directions tried from the camera
+constexpr double kUnitsSuspectM = 100;  // a scene larger than this, without units, is suspect
+
+// Fibonacci sphere: n nearly uniform unit directions.
+Vec3 sphere_direction(int i, int n) {
+    const double golden = 2.39996322972865332;
+    const double z = 1 - (2.0 * i + 1) / n, r = std::sqrt(std::max(0.0, 1 - z * z));
+    return {static_cast<float>(r * std::cos(golden * i)), static_cast<float>(r * std::sin(golden * i)),
+            static_cast<float>(z)};
+}
+
+struct Visible {
+    Vec3 p, n;
+    float camera_leg = 0;
+};
+
+std::vector<Visible> visible_points(const RenderContext& ctx) {
+    std::vector<Visible> out;
+    const Vec3 eye = ctx.camera.position();
+    for (int j = 0; j < kGrid; ++j)
+        for (int i = 0; i < kGrid; ++i) {
+            const float px = (i + 0.5f) * ctx.width / kGrid, py = (j + 0.5f) * ctx.height / kGrid;
+            const Vec3 d = ctx.camera.direction(px, py);
+            SurfaceHit hit;
+            if (!ctx.geometry.intersect(eye, d, 0, 1e30f, hit) || hit.light >= 0) continue;
+            Vec3 n = dot(hit.normal, d) > 0 ? -hit.normal : hit.normal;
+            out.push_back({hit.position, n, hit.t});
+        }
+    return out;
+}
+
+// The point of a quad light's parallelogram nearest to p (its plane coordinates, clamped).
+Vec3 nearest_on_quad(const LightDesc& l, Vec3 p) {
+    const Vec3 r = p - l.corner;
+    const double a = dot(l.edge1, l.edge1), b = dot(l.edge1, l.edge2), c = dot(l.edge2, l.edge2);
+    const double d = dot(r, l.edge1), e = dot(r, l.edge2), det = a * c - b * b;
+    double u = det > 0 ? (c * d - b * e) / det : 0, v = det > 0 ? (a * e - b * d) / det : 0;
+    u = std::clamp(u, 0.0, 1.0);
+    v = std::clamp(v, 0.0, 1.0);
+    return l.corner + l.edge1 * static_cast<float>(u) + l.edge2 * static_cast<float>(v);
+}
+
+}  // namespace
+
+SceneFacts scene_facts(const RenderContext& ctx) {
+    SceneFacts f;
+    Vec3 lo = ctx.geometry.bounds_min(), hi = ctx.geometry.bounds_max();
+    for (const LightDesc& l : ctx.scene.lights)
+        if (l.type != LightType::Quad) {  // point-like lights count too (quads are geometry)
+            lo = vmin(lo, l.position);
+            hi = vmax(hi, l.position);
+        }
+    f.size = hi - lo;
+    f.diagonal_m = length(f.size);
+    f.crossing_ns = f.diagonal_m / kSpeedOfLight;
+    f.triangles = ctx.geometry.triangle_count();
+    for (const ShapeDesc& s : ctx.scene.shapes) f.spheres += s.type == ShapeType::Sphere;
+
+    const bool tof = ctx.scene.render.camera_tof;
+    const std::vector<Visible> seen = visible_points(ctx);
+    double first = 1e300, last = -1;
+    for (size_t li = 0; li < ctx.scene.lights.size(); ++li) {
+        const LightDesc& l = ctx.scene.lights[li];
+        if (l.type == LightType::Laser) {  // a pencil: where its beam lands
+            SurfaceHit hit;
+            if (ctx.geometry.intersect(l.position, l.direction, 0, 1e30f, hit)) {
+                double t = hit.t + (tof ? length(ctx.camera.position() - hit.position) : 0.0);
+                first = std::min(first, t);
+                last = std::max(last, t);
+            }
+            continue;
+        }
+        for (const Visible& v : seen) {
+            if (l.type == LightType::Quad) {  // the nearest point of the quad it faces: the earliest
+                const Vec3 n = cross(l.edge1, l.edge2);
+                const Vec3 q = nearest_on_quad(l, v.p);
+                if (dot(v.p - q, n) > 0) first = std::min<double>(first, length(v.p - q) + (tof ? v.camera_leg : 0.0f));
+            }
+            for (int s = 0; s < 9; ++s) {  // a 3 x 3 grid over an area light; one sample otherwise
+                DirectLightSample d;
+                if (!ctx.lights.sample_direct(li, v.p, v.n, (s % 3 + 0.5f) / 3, (s / 3 + 0.5f) / 3, d)) continue;
+                const double t = d.distance + (tof ? v.camera_leg : 0.0f);
+                if (l.type != LightType::Quad) first = std::min(first, t);
+                const float eps = ray_epsilon(v.p, d.distance);
+                if (!ctx.geometry.occluded(v.p + v.n * eps, d.to_light, 0, d.distance * (1 - 1e-4f)))
+                    last = std::max(last, t);
+                if (l.type != LightType::Quad) break;
+            }
+        }
+    }
+    if (first < 1e300) f.first_arrival_ns = first / kSpeedOfLight;
+    if (last >= 0) f.last_direct_arrival_ns = last / kSpeedOfLight;
+
+    // A closed room: no direction from the camera escapes. A light outside the box of the
+    // room's walls (as the camera sees them all around) cannot light anything inside it.
+    Vec3 room_lo{1e30f}, room_hi{-1e30f};
+    f.camera_enclosed = true;
+    for (int i = 0; i < kEnclosureRays && f.camera_enclosed; ++i) {
+        SurfaceHit hit;
+        if (!ctx.geometry.intersect(ctx.camera.position(), sphere_direction(i, kEnclosureRays), 0, 1e30f, hit))
+            f.camera_enclosed = false;
+        else {
+            room_lo = vmin(room_lo, hit.position);
+            room_hi = vmax(room_hi, hit.position);
+        }
+    }
+    if (f.camera_enclosed) {
+        const float slack = 1e-3f * length(room_hi - room_lo);
+        for (size_t li = 0; li < ctx.scene.lights.size(); ++li) {
+            const LightDesc& l = ctx.scene.lights[li];
+            Vec3 c = l.type == LightType::Quad ? l.corner + (l.edge1 + l.edge2) * 0.5f : l.position;
+            bool inside = true;
+            for (int a = 0; a < 3; ++a) inside = inside && c[a] >= room_lo[a] - slack && c[a] <= room_hi[a] + slack;
+            if (!inside) f.lights_outside.push_back(static_cast<int>(li));
+        }
+    }
+    return f;
+}
+
+std::vector<std::string> scene_warnings(const RenderContext& ctx, const SceneFacts& f) {
+    std::vector<std::string> w;
+    const SceneDesc& s = ctx.scene;
+    char buf[512];
+    if (f.diagonal_m > kUnitsSuspectM && s.meters_per_unit == 1 && f.crossing_ns > s.time.end_ns) {
+        std::snprintf(buf, sizeof buf,
+                      "warning: %s: the scene is %.0f m across (no \"units\", so coordinates are meters): light needs "
+                      "%.0f ns to cross it, and the video ends at %s ns; if the coordinates are centimeters, add "
+                      "\"units\": {\"meters_per_unit\": 0.01}",
+                      s.source.c_str(), f.diagonal_m, f.crossing_ns, format_number(s.time.end_ns).c_str());
+        w.push_back(buf);
+    }
+    for (int li : f.lights_outside) {
+        std::snprintf(buf, sizeof buf,
+                      "warning: %s: lights[%d] is outside the closed room the camera is in: none of its light can "
+                      "reach what the camera sees",
+                      s.source.c_str(), li);
+        w.push_back(buf);
+    }
+    // In a medium the air itself lights up at once: only surfaces can arrive too late.
+    if (!s.medium.present && f.first_arrival_ns && *f.first_arrival_ns >= s.time.end_ns &&
+        f.lights_outside.empty()) {
+        std::snprintf(buf, sizeof buf,
+                      "warning: %s: nothing but the lights themselves arrives before end_ns = %s ns: the first light "
+                      "reflected toward the camera arrives at about %.3g ns; raise time.end_ns",
+                      s.source.c_str(), format_number(s.time.end_ns).c_str(), *f.first_arrival_ns);
+        w.push_back(buf);
+    }
+    return w;
+}
+
+}  // namespace sl
