@@ -58,9 +58,9 @@ int render(const RunOptions& o) {
     check_fits_machine(plan);
     if (o.resume && !o.cube_path.empty())
         throw InputError("command line: --cube cannot be combined with --resume (the cube needs every section)");
-    const std::string fingerprint = settings_fingerprint(scene, plan.sections, o.strategy);
-
     RenderContext ctx(scene);  // meshes and the BVH: input errors here come before any output exists
+    // After the meshes were checked and loaded, so that their own limits speak first.
+    const std::string fingerprint = settings_fingerprint(scene, plan.sections, o.strategy);
 
     OutputSettings out;
     out.video = o.output;
