@@ -353,7 +353,7 @@ private:
         td.start_ns = t.number("start_ns", Range::any(), td.start_ns);
         td.end_ns = t.number("end_ns", Range::any(), td.end_ns);
         td.frames = static_cast<int>(t.integer("frames", 1, limits::kMaxFrames, td.frames));
-        td.fps = t.number("fps", Range{0, limits::kMaxFps, true, false}, td.fps);
+        td.fps = t.number("fps", Range::closed(limits::kMinFps, limits::kMaxFps), td.fps);
         if (!(td.end_ns > td.start_ns))
             t.fail("end_ns", "must be greater than start_ns (" + format_number(td.start_ns) +
                                  "), got " + format_number(td.end_ns));

@@ -16,12 +16,14 @@
 #include "core/errors.h"
 #include "pipeline/frame_outputs.h"
 #include "pipeline/memory_plan.h"
+#include "pipeline/output_checks.h"
 #include "pipeline/progress.h"
 #include "pipeline/render_pipeline.h"
 #include "pipeline/resume.h"
 #include "pipeline/retime.h"
 #include "pipeline/run_stats.h"
 #include "pipeline/settings_hash.h"
+#include "stages/output/atomic_file.h"
 #include "pipeline/scene_info.h"
 
 namespace sl {
@@ -30,7 +32,10 @@ namespace {
 std::atomic<bool> g_cancel{false};
 
 extern "C" void on_signal(int) {
-    if (g_cancel.exchange(true)) _exit(130);  // a second signal: stop at once
+    if (g_cancel.exchange(true)) {  // a second signal: stop at once, leaving no temporary behind
+        remove_live_temporaries();
+        _exit(130);
+    }
 }
 
 // Refuse up front what could only end in running out of memory.
@@ -58,6 +63,7 @@ int render(const RunOptions& o) {
     check_fits_machine(plan);
     if (o.resume && !o.cube_path.empty())
         throw InputError("command line: --cube cannot be combined with --resume (the cube needs every section)");
+    check_outputs(outputs_of(o), scene.input_files);  // no clobbered input, nothing unwritable found late
     RenderContext ctx(scene);  // meshes and the BVH: input errors here come before any output exists
     // After the meshes were checked and loaded, so that their own limits speak first.
     const std::string fingerprint = settings_fingerprint(scene, plan.sections, o.strategy);
@@ -82,7 +88,9 @@ int render(const RunOptions& o) {
     job.ctx = &ctx;
     job.plan = plan;
     job.strategy = o.strategy;
-    if (o.resume) job.on_disk = sections_on_disk(outputs, plan_sections(ctx, plan, o.strategy), fingerprint);
+    job.fingerprint = fingerprint;
+    if (o.resume)
+        job.on_disk = sections_on_disk(outputs, plan_sections(ctx, plan, o.strategy), fingerprint, ctx.width, ctx.height);
     std::fprintf(stderr, "slowlight: %dx%d, %d frames, %d passes x %lld photons, %d section%s%s; buckets %s per section, about %s fixed\n",
                  ctx.width, ctx.height, scene.time.frames, scene.render.passes,
                  static_cast<long long>(scene.render.photons_per_pass), plan.sections, plan.sections > 1 ? "s" : "",

@@ -11,7 +11,8 @@
 #include <memory>
 #include <optional>
 
-#include "stages/output/exr_io.h"
+#include "pipeline/resume.h"
+#include "stages/output/exr_frame_check.h"
 #include "stages/output/tone_map.h"
 #include "stages/render/frame_assembly.h"
 
@@ -41,6 +42,11 @@ struct FrameImage {
     int frame = 0;
     std::vector<float> rgb;
     std::vector<float> before, bucket, after;  // transient-cube planes, when asked for
+    // With the last section's first frame: the steady image and, when none was fixed yet, the
+    // exposure it gives. Only the write stage hands them to the outputs: the outputs' scratch
+    // buffers (FrameOutputs::rgb8_) are the write stage's alone.
+    std::vector<float> steady;
+    std::optional<double> exposure;
 };
 // Frames travel by pointer: a flow-graph edge copies its message, and a frame is megabytes.
 using FramePtr = std::shared_ptr<FrameImage>;
@@ -118,8 +124,9 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameOutputs& outputs, const 
     auto resumed = [&](int s) { return s < static_cast<int>(job.on_disk.size()) && job.on_disk[s]; };
 
     if (outputs.needs_exposure() && resumed(plan.sections - 1) && mode == EmissionMode::Constant) {
-        ExrImage steady = read_exr(outputs.exr_steady_path());
-        outputs.set_exposure(exposure_from_steady(steady.rgb.data(), ctx.width, ctx.height));
+        std::vector<float> steady = read_verified_exr(
+            outputs.exr_steady_path(), resume_expectation(ctx.width, ctx.height, job.fingerprint, std::nullopt));
+        outputs.set_exposure(exposure_from_steady(steady.data(), ctx.width, ctx.height));
     } else if (outputs.needs_exposure() && (plan.sections > 1 || resumed(0))) {
         auto t0 = Clock::now();
         outputs.set_exposure(exposure_from_preview(ctx, counters));
@@ -174,21 +181,23 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameOutputs& outputs, const 
     flow::function_node<FrameJob, FramePtr> assemble(g, flow::serial, [&](const FrameJob& job_in) {
         auto t0 = Clock::now();
         Section& s = *job_in.section;
-        auto out = std::make_shared<FrameImage>(FrameImage{job_in.section, job_in.frame, {}, {}, {}, {}});
+        auto out = std::make_shared<FrameImage>(FrameImage{job_in.section, job_in.frame, {}, {}, {}, {}, {}, {}});
         FrameImage& img = *out;
         if (s.from_disk) {
-            img.rgb = read_exr(outputs.exr_frame_path(job_in.frame)).rgb;
+            // Checked again as it is read: the file may have changed since --resume judged it.
+            img.rgb = read_verified_exr(outputs.exr_frame_path(job_in.frame),
+                                        resume_expectation(ctx.width, ctx.height, job.fingerprint, job_in.frame));
         } else {
             if (!s.assembler) {
                 s.assembler.emplace(*s.run.buffer, mode, ctx.pulse_buckets);
                 if (s.last) {
-                    std::vector<float> steady;
-                    s.assembler->steady(steady);
+                    s.assembler->steady(img.steady);
+                    // Read here, set only by the write stage; nothing else sets it meanwhile:
+                    // with several sections the preview fixed it before the graph started.
                     if (outputs.needs_exposure())
-                        outputs.set_exposure(mode == EmissionMode::Pulse
-                                                 ? exposure_of_brightest_pulse_frame(*s.run.buffer, ctx)
-                                                 : exposure_from_steady(steady.data(), ctx.width, ctx.height));
-                    outputs.write_steady(steady);
+                        img.exposure = mode == EmissionMode::Pulse
+                                           ? exposure_of_brightest_pulse_frame(*s.run.buffer, ctx)
+                                           : exposure_from_steady(img.steady.data(), ctx.width, ctx.height);
                 }
             }
             s.assembler->frame(job_in.frame, img.rgb);
@@ -205,6 +214,8 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameOutputs& outputs, const 
     Write write(g, flow::serial, [&](const FramePtr& frame, Write::output_ports_type& out) {
         const FrameImage& img = *frame;
         auto t0 = Clock::now();
+        if (img.exposure) outputs.set_exposure(*img.exposure);
+        if (!img.steady.empty()) outputs.write_steady(img.steady);
         outputs.write_frame(img.frame, img.rgb, img.section->from_disk);
         if (!img.before.empty()) outputs.write_cube_plane(img.before);
         if (!img.bucket.empty()) outputs.write_cube_plane(img.bucket);

@@ -37,6 +37,7 @@ struct PipelineJob {
     MemoryPlan plan;
     Strategy strategy = Strategy::Single;
     std::vector<bool> on_disk;  // per section: already rendered (--resume)
+    std::string fingerprint;    // of this render's settings: resumed frames must carry it
 };
 
 std::vector<SectionLayout> plan_sections(const RenderContext& ctx, const MemoryPlan& plan, Strategy strategy);
