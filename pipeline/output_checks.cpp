@@ -92,12 +92,18 @@ void check_writable(const OutputRequest& o) {
         std::error_code ec;
         auto st = fs::status(o.path, ec);
         if (fs::exists(st) && !fs::is_directory(st)) refuse(o, "is not a directory");
-        if (!fs::exists(st)) {
-            fs::create_directories(o.path, ec);
-            if (ec) refuse(o, "cannot create the directory: " + ec.message());
+        if (fs::exists(st)) {
+            if (auto why = cannot_create_in(o.path)) refuse(o, *why);
+            remove_stale_temporaries(o.path);
+            return;
         }
-        if (auto why = cannot_create_in(o.path)) refuse(o, *why);
-        remove_stale_temporaries(o.path);
+        // Made only when rendering starts (a later input error leaves nothing behind): the
+        // nearest folder that exists must take it.
+        fs::path up = fs::absolute(o.path, ec).lexically_normal();
+        while (!up.empty() && up != up.root_path() && !fs::exists(fs::status(up, ec))) up = up.parent_path();
+        if (!fs::is_directory(fs::status(up, ec)))
+            refuse(o, "cannot create the directory: '" + printable(up.string()) + "' is not a folder");
+        if (auto why = cannot_create_in(up.string())) refuse(o, "cannot create the directory: " + *why);
         return;
     }
     const OutputPlace place = place_output(o.path);
