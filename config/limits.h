@@ -13,6 +13,9 @@ inline constexpr int kMaxPulseFrames = 1'000'000;  // pulse width / frame width
 inline constexpr int kMaxSections = kMaxFrames;    // at most one section per frame
 inline constexpr int kMaxThreads = 4096;
 inline constexpr double kMaxFps = 1000;
+// Below one frame a second the containers' time bases break down (WebM's millisecond clock
+// gives a wrong frame rate under 0.5 fps, 1e-4 fps makes an MP4 that does not play).
+inline constexpr double kMinFps = 1;
 // Every length, in meters after units: keeps squared lengths and cross products finite in float.
 inline constexpr double kMaxLength = 1e9;
 // Light power (W) and radiance: far beyond any real light, far below float overflow once

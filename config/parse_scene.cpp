@@ -1,5 +1,7 @@
 #include "config/parse_scene.h"
 
+#include <sys/stat.h>
+
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -9,6 +11,7 @@
 #include <optional>
 
 #include "config/default_scene.h"
+#include "config/input_file.h"
 #include "config/json_reader.h"
 #include "config/limits.h"
 #include "config/text_util.h"
@@ -67,10 +70,16 @@ public:
         if (top.has("time")) parse_time(top.object("time"));
         if (top.has("emission")) parse_emission(top.object("emission"));
         if (top.has("render")) parse_render(top.object("render"));
+        scene_.input_files = std::move(inputs_);
         return std::move(scene_);
     }
 
 private:
+    static unsigned kind_of(const fs::path& p) {
+        struct stat st {};
+        return ::stat(p.c_str(), &st) == 0 ? st.st_mode : 0u;
+    }
+
     template <class F>
     void for_each_element(const JsonObject& parent, std::string_view key, F&& f) const {
         const Json& array = parent.at(key);
@@ -227,6 +236,10 @@ private:
         fs::file_status st = fs::status(p, ec);
         if (!fs::exists(st)) s.fail("file", "mesh file not found: " + p.string());
         if (fs::is_directory(st)) s.fail("file", "is a directory, not a mesh file: " + p.string());
+        if (!fs::is_regular_file(st))  // a FIFO would block, /dev/zero never end
+            s.fail("file", "is " + file_kind_name(kind_of(p)) + ", not a mesh file (only regular files are read): " +
+                               p.string());
+        inputs_.push_back(p.string());
         return p.string();
     }
 
@@ -340,7 +353,7 @@ private:
         td.start_ns = t.number("start_ns", Range::any(), td.start_ns);
         td.end_ns = t.number("end_ns", Range::any(), td.end_ns);
         td.frames = static_cast<int>(t.integer("frames", 1, limits::kMaxFrames, td.frames));
-        td.fps = t.number("fps", Range{0, limits::kMaxFps, true, false}, td.fps);
+        td.fps = t.number("fps", Range::closed(limits::kMinFps, limits::kMaxFps), td.fps);
         if (!(td.end_ns > td.start_ns))
             t.fail("end_ns", "must be greater than start_ns (" + format_number(td.start_ns) +
                                  "), got " + format_number(td.end_ns));
@@ -378,6 +391,7 @@ private:
     const std::string& source_;
     fs::path base_dir_;
     double scale_ = 1;  // meters per file unit
+    mutable std::vector<std::string> inputs_;  // every file the scene reads, for output checks
     SceneDesc scene_;
     std::map<std::string, int> material_index_;
 };
@@ -403,21 +417,11 @@ SceneDesc parse_scene_text(const std::string& text, const std::string& source_na
 }
 
 SceneDesc parse_scene_file(const std::string& path) {
-    const std::string name = printable(path);
-    std::error_code ec;
-    if (fs::is_directory(path, ec)) throw InputError(name + ": is a directory, not a scene file");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(name + ": cannot open the scene file: " + std::strerror(errno));
-    // Read in chunks with a cap, so that a device or pipe that never ends cannot hang us.
-    std::string text;
-    char buf[1 << 16];
-    while (in.read(buf, sizeof buf) || in.gcount() > 0) {
-        text.append(buf, static_cast<size_t>(in.gcount()));
-        if (text.size() > kMaxSceneFileBytes)
-            throw InputError(name + ": the scene file is larger than 64 MiB");
-    }
-    if (in.bad()) throw InputError(name + ": cannot read the scene file: " + std::strerror(errno));
-    return parse_scene_text(text, path, fs::path(path).parent_path().string());
+    // Only a regular file of at most 64 MiB is read: a FIFO or a device cannot hang us.
+    const std::string text = read_input_file(path, kMaxSceneFileBytes, printable(path), "scene file");
+    SceneDesc scene = parse_scene_text(text, path, fs::path(path).parent_path().string());
+    scene.input_files.insert(scene.input_files.begin(), path);
+    return scene;
 }
 
 SceneDesc parse_default_scene() {

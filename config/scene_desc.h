@@ -114,6 +114,9 @@ struct SceneDesc {
     TimeDesc time;
     EmissionDesc emission;
     RenderDesc render;
+    // Every file the run reads (the scene file first, then meshes, ...), so that no output
+    // may be one of them. Importers append what they read.
+    std::vector<std::string> input_files;
 };
 
 }  // namespace sl

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "config/input_file.h"
 #include "core/errors.h"
 
 namespace sl {
@@ -32,6 +33,7 @@ TriangleSoup load_obj_mesh(const ShapeDesc& shape, const std::string& scene_sour
     auto fail = [&](const std::string& why) {
         return InputError(scene_source + ": mesh '" + shape.file + "': " + why);
     };
+    check_input_file(shape.file, UINT64_MAX, scene_source + ": mesh '" + shape.file + "'", "mesh file");
     std::error_code ec;
     if (!std::filesystem::is_regular_file(shape.file, ec)) throw fail("not a readable file");
     // Parsing holds the text's numbers several times over: refuse what could exhaust memory.

@@ -21,6 +21,7 @@
 #include "pipeline/exposure.h"
 #include "pipeline/frame_outputs.h"
 #include "pipeline/memory_plan.h"
+#include "pipeline/output_checks.h"
 #include "pipeline/progress.h"
 #include "pipeline/render_pipeline.h"
 #include "pipeline/resume.h"
@@ -28,6 +29,7 @@
 #include "pipeline/run_stats.h"
 #include "pipeline/settings_hash.h"
 #include "pipeline/scene_checks.h"
+#include "stages/output/atomic_file.h"
 #include "pipeline/scene_info.h"
 
 namespace sl {
@@ -36,7 +38,10 @@ namespace {
 std::atomic<bool> g_cancel{false};
 
 extern "C" void on_signal(int) {
-    if (g_cancel.exchange(true)) _exit(130);  // a second signal: stop at once
+    if (g_cancel.exchange(true)) {  // a second signal: stop at once, leaving no temporary behind
+        remove_live_temporaries();
+        _exit(130);
+    }
 }
 
 // Several ranks (MPI): the exchange, and whether the ranks agreed to start rendering (before
@@ -128,12 +133,13 @@ int render(RunOptions o) {
     check_fits_machine(plan);
     if (o.resume && !o.cube_path.empty())
         throw InputError("command line: --cube cannot be combined with --resume (the cube needs every section)");
-    const std::string fingerprint = settings_fingerprint(scene, plan.sections, o.strategy);
-
+    check_outputs(outputs_of(o), scene.input_files);  // no clobbered input, nothing unwritable found late
     RenderContext ctx(scene);  // meshes and the BVH: input errors here come before any output exists
     ctx.exchange = ex;
     if (root)
         for (const std::string& w : scene_warnings(ctx, scene_facts(ctx))) std::fprintf(stderr, "%s\n", w.c_str());
+    // After the meshes were checked and loaded, so that their own limits speak first.
+    const std::string fingerprint = settings_fingerprint(scene, plan.sections, o.strategy);
 
     require_an_output(o);  // after every check of the input, before any work
     OutputSettings out;
@@ -162,7 +168,9 @@ int render(RunOptions o) {
     job.strategy = o.strategy;
     job.exposure_rule.percentile = o.exposure_percentile;
     job.exposure_rule.follow = o.exposure_follow;
-    if (o.resume) job.on_disk = sections_on_disk(outputs, plan_sections(ctx, plan, o.strategy), fingerprint);
+    job.fingerprint = fingerprint;
+    if (o.resume)
+        job.on_disk = sections_on_disk(outputs, plan_sections(ctx, plan, o.strategy), fingerprint, ctx.width, ctx.height);
     if (ex) {  // from here on every rank renders, or none does
         const int status = agree_to_start(*ex, 0, "");
         if (status != 0) return status;

@@ -10,6 +10,7 @@
 
 #include "core/errors.h"
 #include "stages/output/atomic_file.h"
+#include "stages/output/exr_frame_check.h"
 #include "stages/output/exr_io.h"
 #include "stages/output/png_io.h"
 #include "stages/output/tone_map.h"
@@ -111,7 +112,8 @@ void FrameOutputs::write_frame(int index, const std::vector<float>& rgb, bool on
         exr.run([&] {
             std::map<std::string, std::string> meta = settings_.metadata;
             double delta = (settings_.end_ns - settings_.start_ns) / std::max(1, settings_.frames);
-            meta["slowlight:frame"] = std::to_string(index);
+            meta[kFrameIndexKey] = std::to_string(index);
+            meta[kChecksumKey] = pixel_checksum(rgb.data(), rgb.size());  // --resume verifies it
             meta["slowlight:frame_start_ns"] = exact(settings_.start_ns + index * delta);
             meta["slowlight:frame_end_ns"] = exact(settings_.start_ns + (index + 1) * delta);
             // The exposure and curve the video and PNG frames were made with (linear data here).
@@ -140,8 +142,11 @@ void FrameOutputs::write_frame(int index, const std::vector<float>& rgb, bool on
 
 void FrameOutputs::write_steady(const std::vector<float>& rgb) {
     const int w = settings_.width, h = settings_.height;
-    if (!settings_.exr_dir.empty())
-        seconds_exr += timed([&] { write_exr(exr_steady_path(), w, h, rgb.data(), settings_.metadata); });
+    if (!settings_.exr_dir.empty()) {
+        std::map<std::string, std::string> meta = settings_.metadata;
+        meta[kChecksumKey] = pixel_checksum(rgb.data(), rgb.size());
+        seconds_exr += timed([&] { write_exr(exr_steady_path(), w, h, rgb.data(), meta); });
+    }
     if (!settings_.png_dir.empty()) {
         tone_map_srgb8(rgb.data(), w, h, exposure_.value_or(1.0), rgb8_.data(), settings_.tone);
         seconds_png += timed([&] { write_png((std::filesystem::path(settings_.png_dir) / "steady.png").string(), w, h, rgb8_.data()); });

@@ -1,6 +1,8 @@
 #pragma once
 // Where finished frames go: linear EXR files, tone-mapped PNGs, the video encoder and the
-// transient cube. All of them are opened (and checked) before rendering starts.
+// transient cube. All of them are opened (and checked) before rendering starts. Not thread
+// safe: in the pipeline only the write stage calls it (its tone-mapping scratch buffer rgb8_
+// is shared by frames and the steady image).
 #include <cstdint>
 #include <map>
 #include <memory>

@@ -12,8 +12,10 @@
 #include <optional>
 
 #include "pipeline/distributed/image_gather.h"
-#include "stages/output/exr_io.h"
 #include "pipeline/exposure.h"
+#include "pipeline/resume.h"
+#include "stages/output/exr_frame_check.h"
+#include "stages/output/exr_io.h"
 #include "stages/render/frame_assembly.h"
 
 namespace sl {
@@ -42,6 +44,11 @@ struct FrameImage {
     int frame = 0;
     std::vector<float> rgb;
     std::vector<float> before, bucket, after;  // transient-cube planes, when asked for
+    // With the last section's first frame: the steady image and, when none was fixed yet, the
+    // exposure it gives. Only the write stage hands them to the outputs: the outputs' scratch
+    // buffers (FrameOutputs::rgb8_) are the write stage's alone.
+    std::vector<float> steady;
+    std::optional<ExposurePlan> exposure;
 };
 // Frames travel by pointer: a flow-graph edge copies its message, and a frame is megabytes.
 using FramePtr = std::shared_ptr<FrameImage>;
@@ -233,10 +240,12 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameOutputs& outputs, const 
     flow::function_node<FrameJob, FramePtr> assemble(g, flow::serial, [&](const FrameJob& job_in) {
         auto t0 = Clock::now();
         Section& s = *job_in.section;
-        auto out = std::make_shared<FrameImage>(FrameImage{job_in.section, job_in.frame, {}, {}, {}, {}});
+        auto out = std::make_shared<FrameImage>(FrameImage{job_in.section, job_in.frame, {}, {}, {}, {}, {}, {}});
         FrameImage& img = *out;
         if (s.from_disk) {
-            img.rgb = read_exr(outputs.exr_frame_path(job_in.frame)).rgb;
+            // Checked again as it is read: the file may have changed since --resume judged it.
+            img.rgb = read_verified_exr(outputs.exr_frame_path(job_in.frame),
+                                        resume_expectation(ctx.width, ctx.height, job.fingerprint, job_in.frame));
         } else {
             if (!s.assembler) {
                 s.assembler.emplace(*s.run.buffer, mode, ctx.pulse_buckets);
@@ -245,17 +254,19 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameOutputs& outputs, const 
                     s.assembler->steady(steady);
                     whole_image(steady);
                     const std::vector<uint8_t> lamps = emitter_pixels(ctx);
+                    // Decided here, handed to the outputs only by the write stage; nothing else
+                    // sets it meanwhile: with several sections the preview fixed it before.
                     if (exposure_pending) {  // one section: it holds every frame
                         ExposureMeter meter(mode, job.exposure_rule, lamps);
                         measure_buffer(*s.run.buffer, ctx, meter, &steady);
-                        if (root) outputs.set_exposure_plan(meter.decide());
+                        if (root) img.exposure = meter.decide();
                         exposure_pending = false;
                     }
                     if (root) {
                         ExposureMeter light(EmissionMode::Constant, {}, lamps);
                         light.add_steady(steady.data(), ctx.pixels());
                         stats.steady_black = light.decide().black;
-                        outputs.write_steady(steady);
+                        img.steady = std::move(steady);
                     }
                 }
             }
@@ -281,7 +292,11 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameOutputs& outputs, const 
     Write write(g, flow::serial, [&](const FramePtr& frame, Write::output_ports_type& out) {
         const FrameImage& img = *frame;
         auto t0 = Clock::now();
-        if (root) outputs.write_frame(img.frame, img.rgb, img.section->from_disk);
+        if (root) {
+            if (img.exposure) outputs.set_exposure_plan(*img.exposure);
+            if (!img.steady.empty()) outputs.write_steady(img.steady);
+            outputs.write_frame(img.frame, img.rgb, img.section->from_disk);
+        }
         if (!img.before.empty()) outputs.write_cube_plane(img.before);
         if (!img.bucket.empty()) outputs.write_cube_plane(img.bucket);
         if (!img.after.empty()) outputs.write_cube_plane(img.after);

@@ -46,6 +46,7 @@ struct PipelineJob {
     Strategy strategy = Strategy::Single;
     std::vector<bool> on_disk;  // per section: already rendered (--resume)
     ExposureRule exposure_rule;
+    std::string fingerprint;    // of this render's settings: resumed frames must carry it
 };
 
 std::vector<SectionLayout> plan_sections(const RenderContext& ctx, const MemoryPlan& plan, Strategy strategy);

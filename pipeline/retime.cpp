@@ -3,13 +3,15 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <nlohmann/json.hpp>
 
-#include "config/command_line.h"
+#include "config/input_file.h"
+#include "config/json_reader.h"
+#include "config/limits.h"
 #include "config/parse_scene.h"
+#include "config/text_util.h"
 #include "core/errors.h"
 #include "pipeline/frame_outputs.h"
+#include "pipeline/output_checks.h"
 #include "stages/output/npy_cube.h"
 #include "pipeline/exposure.h"
 
@@ -24,24 +26,40 @@ struct CubeInfo {
 
 CubeInfo read_sidecar(const std::string& cube_path) {
     const std::string path = cube_path + ".json";
-    std::ifstream f(path);
-    if (!f) throw InputError(path + ": cannot read the cube's side-car file (written by render --cube)");
+    std::string text;
     try {
-        nlohmann::json j = nlohmann::json::parse(f);
-        CubeInfo c;
-        c.start_ns = j.at("start_ns").get<double>();
-        c.end_ns = j.at("end_ns").get<double>();
-        c.fps = j.at("fps").get<double>();
-        c.frames = j.at("frames").get<int>();
-        c.width = j.at("width").get<int>();
-        c.height = j.at("height").get<int>();
-        if (j.contains("emitter_pixels"))
-            for (const auto& run : j.at("emitter_pixels")) c.emitter_runs.emplace_back(run.at(0).get<int64_t>(), run.at(1).get<int64_t>());
-        if (!(c.end_ns > c.start_ns) || c.frames < 1 || !(c.fps > 0)) throw InputError(path + ": inconsistent values");
-        return c;
-    } catch (const nlohmann::json::exception& e) {
-        throw InputError(path + ": " + e.what());
+        text = read_input_file(path, uint64_t(1) << 20, path, "cube side-car file");
+    } catch (const InputError& e) {
+        throw InputError(std::string(e.what()) + " (written by render --cube)");
     }
+    // The same reader and ranges as a scene's keys: every message names this file and the key.
+    Json j = parse_json_text(text, path);
+    JsonObject top(j, "", path);
+    CubeInfo c;
+    c.start_ns = top.number("start_ns", Range::any());
+    c.end_ns = top.number("end_ns", Range::any());
+    c.fps = top.number("fps", Range::closed(limits::kMinFps, limits::kMaxFps));
+    c.frames = static_cast<int>(top.integer("frames", 1, limits::kMaxFrames));
+    c.width = static_cast<int>(top.integer("width", 1, limits::kMaxImageSide));
+    c.height = static_cast<int>(top.integer("height", 1, limits::kMaxImageSide));
+    if (top.has("emitter_pixels")) {  // runs [first pixel, count] of pixels that see a light
+        const Json& runs = top.at("emitter_pixels");
+        const int64_t pixels = int64_t(c.width) * c.height;
+        bool ok = runs.is_array();
+        for (size_t i = 0; ok && i < runs.size(); ++i) {
+            const Json& run = runs[i];
+            ok = run.is_array() && run.size() == 2 && run[0].is_number_integer() && run[1].is_number_integer();
+            if (!ok) break;
+            const int64_t first = run[0].get<int64_t>(), count = run[1].get<int64_t>();
+            ok = first >= 0 && count >= 0 && first <= pixels && count <= pixels - first;
+            if (ok) c.emitter_runs.emplace_back(first, count);
+        }
+        if (!ok) top.fail("emitter_pixels", "must be a list of [first pixel, count] runs inside the image");
+    }
+    if (!(c.end_ns > c.start_ns) || !std::isfinite((c.end_ns - c.start_ns) / c.frames))
+        top.fail("end_ns", "must be greater than start_ns (" + format_number(c.start_ns) + "), got " +
+                               format_number(c.end_ns));
+    return c;
 }
 
 }  // namespace
@@ -51,6 +69,7 @@ int retime(const RunOptions& o) {
     // The command line has refused every option retime does not use.
     const RenderOverrides& ov = o.overrides;
 
+    check_outputs(outputs_of(o), {o.scene_path, o.scene_path + ".json"});
     NpyCube cube = read_npy_cube(o.scene_path);
     CubeInfo info = read_sidecar(o.scene_path);
     if (cube.planes != info.frames + 2 || cube.width != info.width || cube.height != info.height)

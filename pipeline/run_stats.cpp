@@ -2,7 +2,6 @@
 
 #include <sys/resource.h>
 
-#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
@@ -58,21 +57,19 @@ void write_stats_json(const std::string& path, const RunSummary& s) {
                                 {"frames_received", p.exchanged_received[1]},
                                 {"photon_grid_seconds", p.render.grid},  // rank 0's, part of photon_passes
                                 {"photon_transfer_seconds", p.photon_transfer_seconds}};
-    // A device or FIFO (/dev/stdout, a pipe) is written in place, never replaced by a rename.
-    std::error_code ec;
-    auto type = std::filesystem::status(path, ec).type();
-    bool in_place = !ec && type != std::filesystem::file_type::regular && type != std::filesystem::file_type::not_found;
-    std::string target = in_place ? path : temp_sibling(path);
+    // A device or FIFO (/dev/stdout, a pipe) is written in place, a link through to its target
+    // (atomic_file.h): never replaced by a rename.
+    const std::string target = temp_sibling(path);
     {
         std::ofstream f(target);
         f << j.dump(2) << "\n";
         f.flush();
         if (!f) {
-            if (!in_place) discard_file(target);
+            discard_file(target);
             throw RuntimeFailure("--stats " + path + ": cannot write");
         }
     }
-    if (!in_place) commit_file(target, path);
+    commit_file(target, path);
 }
 
 }  // namespace sl

@@ -2,11 +2,14 @@
 
 #include <cstdint>
 #include <cstdio>
-#include <fstream>
 #include <sstream>
+
+#include "config/input_file.h"
 
 namespace sl {
 namespace {
+
+constexpr uint64_t kMaxMeshBytes = uint64_t(1) << 30;  // as the mesh loader allows
 
 struct Fnv1a {
     uint64_t h = 1469598103934665603ull;
@@ -33,9 +36,9 @@ std::string settings_fingerprint(const SceneDesc& s, int sections, Strategy stra
           << sh.edge2 << ' ' << sh.min << ' ' << sh.max << ' ' << sh.center << ' ' << sh.radius << ' ' << sh.translate
           << ' ' << sh.scale << ' ' << sh.rotate_deg << '\n';
         if (sh.type == ShapeType::Mesh) {
-            std::ifstream f(sh.file, std::ios::binary);
-            char buf[1 << 16];
-            while (f.read(buf, sizeof buf) || f.gcount() > 0) meshes.bytes(buf, static_cast<size_t>(f.gcount()));
+            // Never blindly: a mesh swapped for a FIFO or /dev/zero must not hang the run.
+            read_input_chunks(sh.file, kMaxMeshBytes, s.source + ": mesh '" + sh.file + "'", "mesh file",
+                              [&](const char* p, size_t n) { meshes.bytes(p, n); });
         }
     }
     for (const LightDesc& l : s.lights)

@@ -1,8 +1,12 @@
 #include "stages/output/atomic_file.h"
 
+#include <signal.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <atomic>
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <system_error>
 
@@ -12,26 +16,128 @@ namespace sl {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+// Live temporaries, in fixed slots so that a signal handler can read them without locks or
+// allocation: a slot is claimed (1), filled, then published (2); cleared back to 0.
+constexpr int kSlots = 64;
+constexpr size_t kSlotChars = 4096;
+std::atomic<int> g_state[kSlots];
+char g_names[kSlots][kSlotChars];
+
+void remember(const std::string& temp) {
+    if (temp.size() >= kSlotChars) return;
+    for (int i = 0; i < kSlots; ++i) {
+        int expected = 0;
+        if (!g_state[i].compare_exchange_strong(expected, 1)) continue;
+        std::memcpy(g_names[i], temp.c_str(), temp.size() + 1);
+        g_state[i].store(2);
+        return;
+    }
+}
+
+void forget(const std::string& temp) {
+    for (int i = 0; i < kSlots; ++i)
+        if (g_state[i].load() == 2 && temp == g_names[i]) {
+            g_state[i].store(0);
+            return;
+        }
+}
+
+bool is_temp_name(const fs::path& p) { return p.filename().string().rfind(kTempPrefix, 0) == 0; }
+
+// A link that leads through a process's descriptor table names an open file, not a place.
+bool through_descriptor(const fs::path& p) {
+    const std::string s = p.lexically_normal().string();
+    return s.rfind("/proc/", 0) == 0 || s.rfind("/dev/fd/", 0) == 0;
+}
+
+}  // namespace
+
+OutputPlace place_output(const std::string& path) {
+    OutputPlace place;
+    place.path = path;
+    if (path.empty()) return place;
+    fs::path p(path);
+    std::error_code ec;
+    for (int hop = 0; hop < 40; ++hop) {
+        auto st = fs::symlink_status(p, ec);
+        if (ec || st.type() == fs::file_type::not_found) break;  // a new file
+        if (st.type() == fs::file_type::symlink) {
+            if (through_descriptor(p)) {
+                place.in_place = true;
+                place.path = path;
+                return place;
+            }
+            fs::path target = fs::read_symlink(p, ec);
+            if (ec) break;
+            p = target.is_absolute() ? target : p.parent_path() / target;
+            continue;
+        }
+        if (st.type() == fs::file_type::directory) place.directory = true;
+        else if (st.type() != fs::file_type::regular) {
+            place.in_place = true;
+            place.path = path;  // write through the name the user gave
+            return place;
+        }
+        break;
+    }
+    place.path = p.string();
+    return place;
+}
+
 std::string temp_sibling(const std::string& path) {
     static std::atomic<unsigned> counter{0};
-    const fs::path p(path);
-    const std::string name = "." + p.filename().string() + ".tmp" + std::to_string(::getpid()) +
-                             "_" + std::to_string(counter++);
-    return (p.parent_path() / name).string();
+    const OutputPlace place = place_output(path);
+    if (place.in_place) return place.path;
+    const fs::path p(place.path);
+    const std::string name = std::string(kTempPrefix) + std::to_string(::getpid()) + "-" +
+                             std::to_string(counter++) + "-" + p.filename().string();
+    std::string temp = (p.parent_path() / name).string();
+    remember(temp);
+    return temp;
 }
 
 void commit_file(const std::string& temp, const std::string& path) {
+    if (!is_temp_name(temp)) return;  // written in place
     std::error_code ec;
-    fs::rename(temp, path, ec);
+    fs::rename(temp, place_output(path).path, ec);
     if (ec) {
         discard_file(temp);
         throw RuntimeFailure("cannot write '" + path + "': " + ec.message());
     }
+    forget(temp);
 }
 
 void discard_file(const std::string& temp) noexcept {
+    if (!is_temp_name(temp)) return;  // a device or FIFO written in place is not ours to remove
     std::error_code ec;
     fs::remove(temp, ec);
+    forget(temp);
+}
+
+void remove_live_temporaries() noexcept {
+    for (int i = 0; i < kSlots; ++i)
+        if (g_state[i].load() == 2) ::unlink(g_names[i]);
+}
+
+int remove_stale_temporaries(const std::string& dir) noexcept {
+    int removed = 0;
+    std::error_code ec;
+    fs::directory_iterator it(dir.empty() ? fs::path(".") : fs::path(dir), ec), end;
+    for (; !ec && it != end; it.increment(ec)) {
+        const std::string name = it->path().filename().string();
+        if (name.rfind(kTempPrefix, 0) != 0) continue;
+        const char* digits = name.c_str() + std::strlen(kTempPrefix);
+        char* after = nullptr;
+        long pid = std::strtol(digits, &after, 10);
+        if (after == digits || *after != '-' || pid <= 0) continue;
+        if (pid == ::getpid()) continue;
+        if (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH) continue;  // alive (or not ours to judge)
+        std::error_code rm;
+        if (fs::remove(it->path(), rm)) ++removed;
+    }
+    return removed;
 }
 
 std::string one_line(std::string text) {

@@ -96,4 +96,25 @@ ExrImage read_exr(const std::string& path) {
     }
 }
 
+ExrHeaderInfo read_exr_header(const std::string& path) {
+    try {
+        Imf::InputFile in(path.c_str());
+        const Imf::Header& header = in.header();
+        ExrHeaderInfo info;
+        const Imath::Box2i d = header.dataWindow(), v = header.displayWindow();
+        info.data_x0 = d.min.x, info.data_y0 = d.min.y, info.data_x1 = d.max.x, info.data_y1 = d.max.y;
+        info.display_x0 = v.min.x, info.display_y0 = v.min.y, info.display_x1 = v.max.x, info.display_y1 = v.max.y;
+        for (auto c = header.channels().begin(); c != header.channels().end(); ++c)
+            info.channels[c.name()] = c.channel().type == Imf::HALF    ? "half"
+                                      : c.channel().type == Imf::FLOAT ? "float"
+                                                                        : "uint";
+        for (auto it = header.begin(); it != header.end(); ++it)
+            if (auto* s = dynamic_cast<const Imf::StringAttribute*>(&it.attribute())) info.metadata[it.name()] = s->value();
+        info.tiled = header.hasTileDescription();
+        return info;
+    } catch (const std::exception& e) {
+        fail("cannot read EXR", path, e);
+    }
+}
+
 }  // namespace sl

@@ -21,4 +21,14 @@ struct ExrImage {
 // Reads R, G, B (missing channels read as 0) as float. Throws RuntimeFailure.
 ExrImage read_exr(const std::string& path);
 
+// The header alone, so that a file can be judged before its pixels are allocated.
+struct ExrHeaderInfo {
+    int data_x0 = 0, data_y0 = 0, data_x1 = -1, data_y1 = -1;     // data window, inclusive
+    int display_x0 = 0, display_y0 = 0, display_x1 = -1, display_y1 = -1;
+    std::map<std::string, std::string> channels;  // name -> "half", "float" or "uint"
+    std::map<std::string, std::string> metadata;  // every string attribute
+    bool tiled = false;
+};
+ExrHeaderInfo read_exr_header(const std::string& path);  // Throws RuntimeFailure
+
 }  // namespace sl

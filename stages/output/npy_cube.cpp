@@ -2,8 +2,12 @@
 
 #include <cerrno>
 #include <cstring>
+#include <limits>
+#include <optional>
 #include <regex>
 
+#include "config/input_file.h"
+#include "config/text_util.h"
 #include "core/errors.h"
 #include "stages/output/atomic_file.h"
 
@@ -68,6 +72,10 @@ void NpyCubeWriter::finish() {
 
 NpyCube read_npy_cube(const std::string& path) {
     auto bad = [&](const std::string& why) { return InputError(path + ": " + why); };
+    // A regular file only, and its size known before any allocation: the header's shape is
+    // checked against it, so a small file claiming a huge shape allocates nothing.
+    constexpr uint64_t kMaxCubeBytes = uint64_t(1) << 37;  // 128 GiB: as large as a shape may be
+    const InputFileId file = check_input_file(path, kMaxCubeBytes, path, "NumPy .npy cube");
     std::FILE* f = std::fopen(path.c_str(), "rb");
     if (!f) throw bad(std::string("cannot open: ") + std::strerror(errno));
     struct Closer { std::FILE* f; ~Closer() { std::fclose(f); } } closer{f};
@@ -82,15 +90,35 @@ NpyCube read_npy_cube(const std::string& path) {
     if (dict.find("'<f4'") == std::string::npos || dict.find("'fortran_order': False") == std::string::npos ||
         !std::regex_search(dict, m, shape_re))
         throw bad("expected a float32 C-order array of shape (planes, height, width, 3)");
+    // Each dimension within bounds before any product is formed: no overflow.
+    auto dim = [&](const std::string& text, long long max) {
+        std::optional<long long> v = parse_whole<long long>(text);
+        if (!v || *v < 1 || *v > max)
+            throw bad("implausible shape: dimension " + (text.size() > 24 ? text.substr(0, 24) + "..." : text) +
+                      " is not in 1.." + std::to_string(max));
+        return *v;
+    };
     NpyCube c;
-    long long p = std::stoll(m[1]), h = std::stoll(m[2]), w = std::stoll(m[3]);
-    if (p < 1 || h < 1 || w < 1 || p > 1000000 || h > 65536 || w > 65536 || p * h * w > (1ll << 33))
-        throw bad("implausible shape");
+    long long p = dim(m[1], 1000000), h = dim(m[2], 65536), w = dim(m[3], 65536);
+    if (p * h * w > (1ll << 33)) throw bad("implausible shape: more than 2^33 pixels");
+    const uint64_t need = 10 + len + static_cast<uint64_t>(p * h * w) * 3 * sizeof(float);
+    if (file.size != need)
+        throw bad("is " + std::to_string(file.size) + " bytes, but its shape (" + std::to_string(p) + ", " +
+                  std::to_string(h) + ", " + std::to_string(w) + ", 3) needs " + std::to_string(need));
     c.planes = static_cast<int>(p);
     c.height = static_cast<int>(h);
     c.width = static_cast<int>(w);
     c.data.resize(static_cast<size_t>(p * h * w * 3));
     if (std::fread(c.data.data(), sizeof(float), c.data.size(), f) != c.data.size()) throw bad("truncated data");
+    // Radiance is finite and never negative: anything else would be written on into frames.
+    const size_t plane_values = static_cast<size_t>(h * w * 3);
+    for (size_t i = 0; i < c.data.size(); ++i)
+        if (!(c.data[i] >= 0 && c.data[i] <= std::numeric_limits<float>::max())) {
+            const size_t px = (i % plane_values) / 3;
+            throw bad("plane " + std::to_string(i / plane_values) + ", pixel (" + std::to_string(px % w) + ", " +
+                      std::to_string(px / w) + "): value " + std::to_string(c.data[i]) +
+                      " is not a finite radiance >= 0");
+        }
     return c;
 }
 

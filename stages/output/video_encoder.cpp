@@ -16,6 +16,7 @@ extern "C" {
 #include <stdexcept>
 #include <system_error>
 
+#include "config/limits.h"
 #include "core/errors.h"
 #include "stages/output/atomic_file.h"
 #include "stages/output/av_common.h"
@@ -123,9 +124,9 @@ void check_settings(const VideoSettings& vs) {
     if (vs.width <= 0 || vs.height <= 0)
         throw InputError("video size " + std::to_string(vs.width) + "x" +
                          std::to_string(vs.height) + " must be positive");
-    if (!std::isfinite(vs.fps) || vs.fps <= 0 || vs.fps > 1000)
-        throw InputError("video frame rate " + std::to_string(vs.fps) +
-                         " must be greater than 0 and at most 1000");
+    if (!(vs.fps >= limits::kMinFps && vs.fps <= limits::kMaxFps))
+        throw InputError("video frame rate " + std::to_string(vs.fps) + " must be in " +
+                         std::to_string(int(limits::kMinFps)) + ".." + std::to_string(int(limits::kMaxFps)));
 }
 
 }  // namespace
@@ -183,12 +184,10 @@ struct VideoEncoder::State {
             std::signal(SIGPIPE, SIG_IGN);  // a closed reader must give EPIPE, not kill us
             return;
         }
-        namespace fs = std::filesystem;
-        std::error_code ec;
-        const fs::file_status st = fs::status(path, ec);
-        if (fs::is_directory(st))
+        const OutputPlace place = place_output(path);
+        if (place.directory)
             throw RuntimeFailure("cannot write video " + where() + ": is a directory");
-        if (fs::exists(st) && !fs::is_regular_file(st)) {
+        if (place.in_place) {
             target = path;
             return;
         }
@@ -340,11 +339,9 @@ void VideoEncoder::write_frame(const uint8_t* rgb8) { s_->write_frame(rgb8); }
 void VideoEncoder::finish() { s_->finish(); }
 
 VideoEncoder::~VideoEncoder() {
-    try {
-        s_->finish();
-    } catch (...) {
-        // Destructors must not throw; finish() already cleaned up.
-    }
+    // Not finished: the run failed. A shortened video that plays would look whole, so the
+    // temporary file is removed (a device or FIFO written in place is only closed).
+    s_->release();
 }
 
 int64_t VideoEncoder::frames_written() const { return s_->frames; }

@@ -9,7 +9,9 @@
 // Colours are converted with BT.709 coefficients to limited range and tagged so. Where 4:2:0
 // cannot hold an odd width/height (H.264, y4m) the frames are stored 4:4:4 instead, so the
 // decoded size is always the requested one. A file is written under a temporary name and
-// renamed on finish(), so an interrupted run never leaves a truncated file that looks whole.
+// renamed on finish(), so a failed run never leaves a truncated file that looks whole (an
+// interrupted run calls finish() on purpose: its video plays). A symbolic link is written
+// through to its target; a device or FIFO is written in place (see atomic_file.h).
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -40,8 +42,8 @@ public:
     // Flushes the encoder, writes the trailer, closes and renames into place. Idempotent.
     void finish();
 
-    // Finishes if not yet finished, so the frames written so far still make a playable video.
-    // Never throws.
+    // Without finish() (an error unwinding), the video is dropped: its temporary file is
+    // removed, so nothing at the final name looks whole. Never throws.
     ~VideoEncoder();
 
     int64_t frames_written() const;

@@ -24,12 +24,14 @@ void expect_one_error_before_rendering(const ProgramResult& r) {
 
 }  // namespace
 
-TEST(Errors, OutputInMissingDirectoryIsAnIoError) {
+// Every output is checked before rendering, and one that cannot be written is refused like
+// any other bad argument (exit 2), not found after the render.
+TEST(Errors, OutputInMissingDirectoryIsRefusedBeforeRendering) {
     ScratchDir dir;
     const std::string missing = dir.file("no_such_dir");
     const std::string video = missing + "/out.mp4";
     ProgramResult r = run_program(small_render("", {"-o", video}));
-    SL_EXPECT_EXIT(r, 1);
+    SL_EXPECT_EXIT(r, 2);
     expect_one_error_before_rendering(r);
     ASSERT_EQ(r.error_lines().size(), 1u);
     EXPECT_NE(r.error_lines()[0].find(video), std::string::npos) << "the error should name the path";

@@ -2,6 +2,9 @@
 // `error:` line must be what the page says. SLOWLIGHT_UPDATE_BAD_INPUTS=1 rewrites the page.
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -85,6 +88,35 @@ void make_fixtures(const std::string& dir) {
     std::ofstream(dir + "/fixtures/flat.obj") << "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n";
     std::ofstream(dir + "/fixtures/huge.obj");
     fs::resize_file(dir + "/fixtures/huge.obj", uintmax_t(2) << 30);  // sparse: no disk used
+    std::ofstream(dir + "/fixtures/tri.obj") << "v -1 0 -1\nv 1 0 -1\nv 0 0 1\nf 1 2 3\n";
+    // Files that never end: a FIFO nobody writes to, and a link to an endless device.
+    mkfifo((dir + "/fixtures/fifo.json").c_str(), 0644);
+    mkfifo((dir + "/fixtures/fifo.obj").c_str(), 0644);
+    fs::create_symlink("/dev/zero", dir + "/fixtures/zero.obj");
+    // A folder where a frame should go: the run fails after the video has started.
+    fs::create_directories(dir + "/fixtures/pngs/frame_0001.png");
+    // Cubes for retime (side-car: frames 1, 1x1 pixels, unless the case says otherwise).
+    auto npy = [&](const std::string& name, const std::string& shape, const std::vector<float>& values,
+                   const std::string& sidecar) {
+        std::string dict = "{'descr': '<f4', 'fortran_order': False, 'shape': " + shape + ", }";
+        dict.append((64 - (10 + dict.size() + 1) % 64) % 64, ' ');
+        dict += '\n';
+        std::ofstream f(dir + "/fixtures/" + name, std::ios::binary);
+        f << std::string("\x93NUMPY\x01\x00", 8) << char(dict.size() & 0xff) << char(dict.size() >> 8) << dict;
+        f.write(reinterpret_cast<const char*>(values.data()), std::streamsize(values.size() * sizeof(float)));
+        std::ofstream(dir + "/fixtures/" + name + ".json") << sidecar;
+    };
+    const std::string one = R"({"start_ns": 0, "end_ns": 1, "frames": 1, "fps": 24, "width": 1, "height": 1})";
+    const std::vector<float> ok(9, 0.5f);
+    npy("dim_1e20.npy", "(100000000000000000000, 1, 1, 3)", ok, one);
+    npy("claims_96gib.npy", "(1000, 4096, 2048, 3)", {}, one);
+    std::vector<float> nan = ok;
+    nan[4] = std::nanf("");
+    npy("nan.npy", "(3, 1, 1, 3)", nan, one);
+    std::vector<float> negative = ok;
+    negative[7] = -1;
+    npy("negative.npy", "(3, 1, 1, 3)", negative, one);
+    npy("fps_1e9.npy", "(3, 1, 1, 3)", ok, R"({"start_ns": 0, "end_ns": 1, "frames": 1, "fps": 1e9, "width": 1, "height": 1})");
 }
 
 std::string scene_text(const std::string& cell) {
@@ -129,6 +161,7 @@ TEST(BadInputs, EveryDocumentedCaseGetsItsOneErrorLine) {
         SCOPED_TRACE(r.what);
         fs::remove(dir + "/bad.json");
         if (r.scene != "-") std::ofstream(dir + "/bad.json", std::ios::binary) << scene_text(r.scene);
+        const std::string scene_before = r.scene == "-" ? "" : test::read_text(dir + "/bad.json");
         // Run in the scratch folder so that messages name relative paths.
         std::string cwd = fs::current_path();
         fs::current_path(dir);
@@ -149,9 +182,22 @@ TEST(BadInputs, EveryDocumentedCaseGetsItsOneErrorLine) {
             // Sizes such as the machine's memory differ between machines: compare them as "<size>".
             EXPECT_EQ(mask_sizes(err), mask_sizes(r.err));
         }
-        // Nothing that looks whole is left behind.
+        // Nothing that looks whole is left behind, no input is clobbered, no temporary stays.
         EXPECT_FALSE(fs::exists(dir + "/out.xyz"));
         EXPECT_FALSE(fs::exists(dir + "/no"));
+        for (const char* out : {"/out.mp4", "/v.mp4", "/s.json", "/c.npy"}) {
+            EXPECT_FALSE(fs::exists(dir + out)) << out;
+            fs::remove(dir + out);
+        }
+        if (r.scene != "-") EXPECT_EQ(test::read_text(dir + "/bad.json"), scene_before);
+        for (auto it = fs::recursive_directory_iterator(dir); it != fs::recursive_directory_iterator(); ++it)
+            EXPECT_NE(it->path().filename().string().rfind(".slowlight-tmp-", 0), 0u) << it->path();
+        // libav's and x264's own lines never reach stderr: only our prefixed lines do.
+        std::istringstream lines(res.err);
+        for (std::string line; std::getline(lines, line);)
+            EXPECT_TRUE(line.rfind("error:", 0) == 0 || line.rfind("warning:", 0) == 0 ||
+                        line.rfind("slowlight:", 0) == 0)
+                << line;
     }
     if (update) std::ofstream(doc_path()) << page;
     fs::remove_all(dir);
