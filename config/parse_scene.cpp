@@ -60,9 +60,15 @@ public:
         if (top.has("shapes"))
             for_each_element(top, "shapes",
                              [&](const JsonObject& s) { scene_.shapes.push_back(shape(s)); });
-        for_each_element(top, "lights",
-                         [&](const JsonObject& l) { scene_.lights.push_back(light(l)); });
-        check_lights(top);
+        // Imported files may bring their own lights: then "lights" may be omitted or empty, and
+        // whether the scene has any light is checked once they are read (core/import).
+        bool imports = false;
+        for (const ShapeDesc& sh : scene_.shapes)
+            imports |= sh.type == ShapeType::Mesh || sh.type == ShapeType::Gltf;
+        if (!imports || top.has("lights"))
+            for_each_element(top, "lights",
+                             [&](const JsonObject& l) { scene_.lights.push_back(light(l)); });
+        if (!imports) check_lights(top);
         if (top.has("medium")) parse_medium(top.object("medium"));
         if (top.has("time")) parse_time(top.object("time"));
         if (top.has("emission")) parse_emission(top.object("emission"));
@@ -232,7 +238,7 @@ private:
 
     ShapeDesc shape(const JsonObject& s) const {
         ShapeDesc d;
-        d.type = static_cast<ShapeType>(s.choice("type", {"quad", "box", "sphere", "mesh"}));
+        d.type = static_cast<ShapeType>(s.choice("type", {"quad", "box", "sphere", "mesh", "gltf"}));
         switch (d.type) {
             case ShapeType::Quad:
                 s.expect_keys({"type", "corner", "edge1", "edge2", "material"});
@@ -253,6 +259,7 @@ private:
                 d.radius = scalar_length(s, "radius", Range::positive());
                 break;
             case ShapeType::Mesh:
+            case ShapeType::Gltf:
                 s.expect_keys({"type", "file", "translate", "scale", "rotate_deg", "material"});
                 d.file = mesh_path(s);
                 if (s.has("translate")) d.translate = point(s, "translate");
@@ -263,7 +270,9 @@ private:
                     d.rotate_deg = to_vec3(s, "rotate_deg", s.triple("rotate_deg", Range::any()));
                 break;
         }
-        d.material = material_ref(s);
+        // A mesh or glTF file without "material" keeps its own materials.
+        const bool imported = d.type == ShapeType::Mesh || d.type == ShapeType::Gltf;
+        d.material = imported && !s.has("material") ? -1 : material_ref(s);
         return d;
     }
 

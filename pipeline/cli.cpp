@@ -23,6 +23,8 @@
 #include "pipeline/run_stats.h"
 #include "pipeline/settings_hash.h"
 #include "pipeline/scene_info.h"
+#include "core/import/model_scene.h"
+#include "core/import/resolve_imports.h"
 
 namespace sl {
 namespace {
@@ -46,7 +48,10 @@ void check_fits_machine(const MemoryPlan& plan) {
 }
 
 SceneDesc load_scene(const RunOptions& o) {
-    SceneDesc scene = o.scene_path.empty() ? parse_default_scene() : parse_scene_file(o.scene_path);
+    SceneDesc scene = o.scene_path.empty()              ? parse_default_scene()
+                      : is_model_file(o.scene_path) ? scene_for_model(o.scene_path)
+                                                    : parse_scene_file(o.scene_path);
+    resolve_imports(scene);  // meshes, materials, textures and lights of imported files
     apply_overrides(scene, o.overrides);
     return scene;
 }

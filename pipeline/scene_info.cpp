@@ -1,6 +1,7 @@
 #include "pipeline/scene_info.h"
 
 #include "core/errors.h"
+#include "core/import/resolve_imports.h"
 #include "pipeline/memory_plan.h"
 
 namespace sl {
@@ -16,6 +17,9 @@ void print_scene_info(std::ostream& out, const SceneDesc& s) {
         << "emission:   " << (s.emission.mode == EmissionMode::Constant ? "constant" : "pulse") << "\n"
         << "render:     " << s.render.passes << " passes x " << s.render.photons_per_pass << " photons, max_depth "
         << s.render.max_depth << ", alpha " << s.render.alpha << "\n"
+        << "geometry:   " << imported_triangles(s) << " imported triangles (" << format_bytes(imported_mesh_bytes(s))
+        << " of vertex data, about " << format_bytes(imported_bvh_bytes(s)) << " more in the BVH); " << s.textures.size()
+        << " texture" << (s.textures.size() == 1 ? "" : "s") << ", " << format_bytes(texture_bytes(s)) << "\n"
         << "memory:     fixed overhead about " << format_bytes(fixed_overhead_bytes(s)) << "\n";
     out << "  sections K   buffers per section\n";
     for (int k : {1, 2, 4, 8}) {

@@ -32,11 +32,16 @@ std::string settings_fingerprint(const SceneDesc& s, int sections, Strategy stra
         t << "shape " << static_cast<int>(sh.type) << ' ' << sh.material << ' ' << sh.corner << ' ' << sh.edge1 << ' '
           << sh.edge2 << ' ' << sh.min << ' ' << sh.max << ' ' << sh.center << ' ' << sh.radius << ' ' << sh.translate
           << ' ' << sh.scale << ' ' << sh.rotate_deg << '\n';
-        if (sh.type == ShapeType::Mesh) {
+        if (sh.type == ShapeType::Mesh && !s.imports_resolved) {
             std::ifstream f(sh.file, std::ios::binary);
             char buf[1 << 16];
             while (f.read(buf, sizeof buf) || f.gcount() > 0) meshes.bytes(buf, static_cast<size_t>(f.gcount()));
         }
+    }
+    for (const std::string& file : s.input_files) {  // imported meshes, libraries, buffers, textures
+        std::ifstream f(file, std::ios::binary);
+        char buf[1 << 16];
+        while (f.read(buf, sizeof buf) || f.gcount() > 0) meshes.bytes(buf, static_cast<size_t>(f.gcount()));
     }
     for (const LightDesc& l : s.lights)
         t << "light " << static_cast<int>(l.type) << ' ' << l.position << ' ' << l.corner << ' ' << l.edge1 << ' ' << l.edge2
