@@ -14,6 +14,8 @@
 namespace sl::test {
 
 struct ModelMaterial {
+    ModelMaterial(std::string n, Vec3 a, Vec3 e = Vec3(0), std::string image = "")
+        : name(std::move(n)), albedo(a), emission(e), albedo_image(std::move(image)) {}
     std::string name;
     Vec3 albedo{0.8f};
     Vec3 emission;             // W sr^-1 m^-2
