@@ -17,7 +17,7 @@ void print_scene_info(std::ostream& out, const SceneDesc& s) {
         << "emission:   " << (s.emission.mode == EmissionMode::Constant ? "constant" : "pulse") << "\n"
         << "render:     " << s.render.passes << " passes x " << s.render.photons_per_pass << " photons, max_depth "
         << s.render.max_depth << ", alpha " << s.render.alpha << "\n"
-        << "geometry:   " << imported_triangles(s) << " imported triangles (" << format_bytes(imported_mesh_bytes(s))
+        << "geometry:   " << imported_triangles(s) << " imported triangles (" << emissive_triangles(s) << " emissive; " << format_bytes(imported_mesh_bytes(s))
         << " of vertex data, about " << format_bytes(imported_bvh_bytes(s)) << " more in the BVH); " << s.textures.size()
         << " texture" << (s.textures.size() == 1 ? "" : "s") << ", " << format_bytes(texture_bytes(s)) << "\n"
         << "memory:     fixed overhead about " << format_bytes(fixed_overhead_bytes(s)) << "\n";

@@ -1,6 +1,7 @@
 // OBJ with its MTL materials, read strictly: every number must be a whole finite number token
 // (tinyobjloader reads "nan", "abc" or "0x10" as 0 and wraps huge indices), and every error
 // names the file and line.
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <filesystem>
@@ -108,11 +109,9 @@ struct MtlResult {
 
 // A texture statement's file: the last token (options such as -s or -bm come before it).
 std::string texture_path(const LineReader& lr, const std::vector<std::string_view>& t, const fs::path& dir,
-                         std::vector<std::string>& warnings, const std::string& material) {
+                         std::string& note) {
     if (t.size() < 2) lr.fail("'" + std::string(t[0]) + "' names no file");
-    if (t.size() > 2)
-        warnings.push_back(lr.file + ": material '" + material + "': options of " + std::string(t[0]) +
-                           " are ignored (the texture is used as is)");
+    if (t.size() > 2) note = "options of " + std::string(t[0]) + " are ignored (the texture is used as is)";
     fs::path p(std::string(t.back()));
     if (p.is_relative()) p = dir / p;
     p = p.lexically_normal();
@@ -140,10 +139,13 @@ void read_mtl(const std::string& path, ImportedFile& out, MtlResult& mtl) {
     MaterialDesc* cur = nullptr;
     struct Extra { Vec3 ks{0}; int illum = -1; float d = 1; bool ke_set = false; };
     std::vector<Extra> extra;
-    std::set<std::string> warned;
-    auto warn_once = [&](const std::string& key, const std::string& why) {
-        if (cur && warned.insert(cur->name + "|" + key).second)
-            out.warnings.push_back(path + ": material '" + cur->name + "': " + why);
+    // What each material loses, gathered into one warning line per material at the end.
+    std::vector<std::vector<std::string>> notes;
+    size_t cur_index = 0;
+    auto warn_once = [&](const std::string&, const std::string& why) {
+        if (!cur) return;
+        auto& n = notes[cur_index];
+        if (std::find(n.begin(), n.end(), why) == n.end()) n.push_back(why);
     };
     size_t pos = 0;
     while (pos < text.size()) {
@@ -163,7 +165,9 @@ void read_mtl(const std::string& path, ImportedFile& out, MtlResult& mtl) {
             mtl.index[name] = static_cast<int>(mtl.materials.size());
             mtl.materials.push_back(m);
             extra.emplace_back();
+            notes.emplace_back();
             cur = &mtl.materials.back();
+            cur_index = mtl.materials.size() - 1;
             continue;
         }
         if (!cur) lr.fail("'" + std::string(k) + "' before any newmtl");
@@ -186,10 +190,11 @@ void read_mtl(const std::string& path, ImportedFile& out, MtlResult& mtl) {
             x.d = lr.number(t.back());
         } else if (k == "Tr") {
             x.d = 1 - lr.number(t.back());
-        } else if (k == "map_Kd") {
-            cur->albedo_texture = add_texture(out, texture_path(lr, t, dir, out.warnings, cur->name), true);
-        } else if (k == "map_Ke") {
-            cur->emission_texture = add_texture(out, texture_path(lr, t, dir, out.warnings, cur->name), true);
+        } else if (k == "map_Kd" || k == "map_Ke") {
+            std::string note;
+            int tex = add_texture(out, texture_path(lr, t, dir, note), true);
+            (k == "map_Kd" ? cur->albedo_texture : cur->emission_texture) = tex;
+            if (!note.empty()) warn_once(note, note);
         } else if (k == "map_Bump" || k == "bump" || k == "map_bump" || k == "norm" || k == "disp") {
             warn_once("bump", "bump and normal maps are ignored");
         } else if (k == "map_d") {
@@ -202,6 +207,7 @@ void read_mtl(const std::string& path, ImportedFile& out, MtlResult& mtl) {
     for (size_t i = 0; i < mtl.materials.size(); ++i) {
         MaterialDesc& m = mtl.materials[i];
         cur = &m;
+        cur_index = i;
         const Extra& x = extra[i];
         if (m.emission_texture >= 0 && !x.ke_set) m.emission = Vec3(1);
         if (x.illum == 3 || x.illum == 5) {
@@ -229,6 +235,12 @@ void read_mtl(const std::string& path, ImportedFile& out, MtlResult& mtl) {
         }
         if (m.emission.x < 0 || m.emission.y < 0 || m.emission.z < 0) lr.fail("Ke of '" + m.name + "' is negative");
         if (max_component(m.reflectance) > 1) m.reflectance = vmin(m.reflectance, Vec3(1));
+    }
+    for (size_t i = 0; i < notes.size(); ++i) {
+        if (notes[i].empty()) continue;
+        std::string all;
+        for (const std::string& n : notes[i]) all += (all.empty() ? "" : "; ") + n;
+        out.warnings.push_back(path + ": material '" + mtl.materials[i].name + "': " + all);
     }
 }
 

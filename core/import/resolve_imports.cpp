@@ -150,6 +150,14 @@ uint64_t imported_bvh_bytes(const SceneDesc& scene) {
     return b;
 }
 
+size_t emissive_triangles(const SceneDesc& scene) {
+    size_t n = 0;
+    for (const ShapeDesc& s : scene.shapes)
+        if (s.mesh)
+            for (int32_t m : s.mesh->tri_material) n += scene.materials[static_cast<size_t>(m)].emits();
+    return n;
+}
+
 size_t imported_triangles(const SceneDesc& scene) {
     size_t n = 0;
     for (const ShapeDesc& s : scene.shapes)

@@ -25,5 +25,6 @@ uint64_t texture_bytes(const SceneDesc& scene);
 // Embree's own copy of the vertices and indices and its BVH (measured, see docs/scenes.md).
 uint64_t imported_bvh_bytes(const SceneDesc& scene);
 size_t imported_triangles(const SceneDesc& scene);
+size_t emissive_triangles(const SceneDesc& scene);
 
 }  // namespace sl
