@@ -5,7 +5,9 @@
 
 #include <cstdint>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -133,7 +135,14 @@ inline void write_gltf(const std::string& path, const ModelMesh& m, const std::v
             jm["extensions"] = {{"KHR_materials_emissive_strength", {{"emissiveStrength", s}}}};
         }
         if (!mat.albedo_image.empty()) {
-            images.push_back({{"uri", mat.albedo_image}});
+            if (binary) {  // a .glb carries its images in its buffer
+                std::ifstream in((std::filesystem::path(path).parent_path() / mat.albedo_image).string(), std::ios::binary);
+                std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+                size_t iv = view(append(bytes.data(), bytes.size()), bytes.size());
+                images.push_back({{"bufferView", iv}, {"mimeType", "image/png"}});
+            } else {
+                images.push_back({{"uri", mat.albedo_image}});
+            }
             textures.push_back({{"source", images.size() - 1}});
             jm["pbrMetallicRoughness"]["baseColorTexture"] = {{"index", textures.size() - 1}};
         }

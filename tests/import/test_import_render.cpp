@@ -201,6 +201,19 @@ TEST(ImportRender, TexturedPlaneFollowsAnalyticDirectLight) {
     std::printf("%d pixels in checker squares, worst relative error %.4f\n", checked, worst);
     EXPECT_GE(checked, 32);
     EXPECT_LT(worst, 0.015);
+    // The same plane as .gltf (external PNG) and .glb (the PNG inside): the same image.
+    ModelMesh gplane;
+    gplane.quad({-1, 0, 1}, {2, 0, 0}, {0, 0, -2}, 0);
+    std::vector<ModelMaterial> gm = {{"checker", Vec3(1), Vec3(0), "checker.png"}};
+    write_gltf(dir.file("plane.gltf"), gplane, gm, false);
+    write_gltf(dir.file("plane.glb"), gplane, gm, true);
+    for (const char* f : {"plane.gltf", "plane.glb"}) {
+        s.shapes[0].type = ShapeType::Gltf;
+        s.shapes[0].file = dir.file(f);
+        s.shapes[0].mesh = nullptr;
+        const Rendered g = render_all(s);
+        EXPECT_LT(rmse(g.steady, r.steady), 1e-3 * mean(r.steady)) << f;
+    }
 }
 
 // A UV sphere of radius 1 at the origin, with or without its vertex normals.
