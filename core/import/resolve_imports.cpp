@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <set>
 
 #include "core/errors.h"
@@ -36,9 +37,16 @@ bool is_import(const ShapeDesc& s) { return s.type == ShapeType::Mesh || s.type 
 // Camera of the first glTF import, kept between resolve_imports and imported_camera.
 struct CameraNote { std::optional<CameraDesc> camera; };
 
-ImportedFile read_file(const ShapeDesc& s) {
-    if (s.type == ShapeType::Gltf) return read_gltf(s.file);
-    return read_obj_mtl(s.file, s.material < 0);
+// Errors name the scene file first when the mesh came through one.
+ImportedFile read_file(const ShapeDesc& s, const std::string& scene_source) {
+    try {
+        if (s.type == ShapeType::Gltf) return read_gltf(s.file);
+        return read_obj_mtl(s.file, s.material < 0);
+    } catch (const InputError& e) {
+        std::error_code ec;
+        if (std::filesystem::absolute(scene_source, ec).lexically_normal().string() == s.file) throw;
+        throw InputError(scene_source + ": " + e.what());
+    }
 }
 
 }  // namespace
@@ -49,7 +57,7 @@ void resolve_imports(SceneDesc& scene) {
     std::vector<std::string> seen_files;
     for (ShapeDesc& s : scene.shapes) {
         if (!is_import(s) || s.mesh) continue;
-        ImportedFile f = read_file(s);
+        ImportedFile f = read_file(s, scene.source);
         const Placement place{s};
         for (const std::string& w : f.warnings)
             if (warned.insert(w).second) std::fprintf(stderr, "warning: %s\n", w.c_str());
