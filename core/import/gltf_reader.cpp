@@ -8,7 +8,9 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <map>
 #include <set>
+#include <tuple>
 
 #include "core/errors.h"
 #include "core/import/imported_file.h"
@@ -127,6 +129,12 @@ public:
         }
         if (out_.mesh.indices.empty() && out_.lights.empty())
             fail("the default scene has no triangles and no lights");
+        MeshData& mesh = out_.mesh;
+        mesh.positions.shrink_to_fit();
+        mesh.normals.shrink_to_fit();
+        mesh.uvs.shrink_to_fit();
+        mesh.indices.shrink_to_fit();
+        mesh.tri_material.shrink_to_fit();
         for (size_t i = 0; i < out_.materials.size(); ++i)
             if (material_used_[i])
                 for (const std::string& w : material_warnings_[i]) out_.warnings.push_back(w);
@@ -369,7 +377,7 @@ private:
     void add_mesh(const tinygltf::Mesh& mesh, int mesh_index, const Mat4& m) {
         const Mat4 nm = normal_matrix(m);
         const bool flip = det3(m) < 0;
-        MeshData& out = out_.mesh;
+        std::map<std::tuple<int, int, int>, uint32_t> placed;
         for (size_t pi = 0; pi < mesh.primitives.size(); ++pi) {
             const tinygltf::Primitive& p = mesh.primitives[pi];
             const std::string where = "mesh " + std::to_string(mesh_index) + " primitive " + std::to_string(pi);
@@ -406,7 +414,20 @@ private:
                 material = default_material_;
             }
             material_used_[static_cast<size_t>(material)] = true;
-            // Vertices of this primitive, in file space.
+            // Primitives of one mesh often share their vertex accessors: place those once.
+            const auto key = std::make_tuple(pos_it->second, nv ? p.attributes.at("NORMAL") : -1,
+                                             tv ? p.attributes.at("TEXCOORD_0") : -1);
+            auto [shared, fresh] = placed.try_emplace(key, static_cast<uint32_t>(out_.mesh.positions.size()));
+            const uint32_t base = shared->second;
+            if (fresh) add_vertices(pv, nv, tv, m, nm, where);
+            add_triangles(p, pv.count, base, flip, material, where);
+        }
+    }
+
+    void add_vertices(const View& pv, const std::optional<View>& nv, const std::optional<View>& tv, const Mat4& m,
+                      const Mat4& nm, const std::string& where) {
+        MeshData& out = out_.mesh;
+        {
             const uint32_t base = static_cast<uint32_t>(out.positions.size());
             const bool any_normals_before = !out.normals.empty() || base == 0;
             for (size_t i = 0; i < pv.count; ++i) {
@@ -438,6 +459,14 @@ private:
             } else if (!out.uvs.empty()) {
                 out.uvs.resize(2 * out.positions.size(), 0.0f);
             }
+        }
+    }
+
+    void add_triangles(const tinygltf::Primitive& p, size_t vertex_count, uint32_t base, bool flip, int material,
+                       const std::string& where) {
+        MeshData& out = out_.mesh;
+        const View pv{nullptr, 0, vertex_count, 0, 0, false};
+        {
             // Indices (or 0..n-1), as a triangle list.
             std::vector<uint32_t> idx;
             if (p.indices >= 0) {
@@ -477,8 +506,6 @@ private:
                 out.tri_material.push_back(material);
             }
         }
-        // Vertices without a normal of their own: the face normal is taken by the renderer
-        // when normals are all zero; mark them so below.
     }
 
     void camera(int index, const Mat4& m) {

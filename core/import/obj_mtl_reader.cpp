@@ -401,6 +401,11 @@ ImportedFile read_obj_mtl(const std::string& path, bool read_materials) {
         m.tri_material.push_back(mat);
     }
     if (m.indices.empty()) throw InputError(path + ": the mesh has no triangles with area");
+    m.positions.shrink_to_fit();
+    m.normals.shrink_to_fit();
+    m.uvs.shrink_to_fit();
+    m.indices.shrink_to_fit();
+    m.tri_material.shrink_to_fit();
     return out;
 }
 
