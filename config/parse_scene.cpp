@@ -62,9 +62,10 @@ public:
                              [&](const JsonObject& s) { scene_.shapes.push_back(shape(s)); });
         // Imported files may bring their own lights: then "lights" may be omitted or empty, and
         // whether the scene has any light is checked once they are read (core/import).
+        // (Only a glTF file, or a mesh that keeps its own materials, can bring light.)
         bool imports = false;
         for (const ShapeDesc& sh : scene_.shapes)
-            imports |= sh.type == ShapeType::Mesh || sh.type == ShapeType::Gltf;
+            imports |= sh.type == ShapeType::Gltf || (sh.type == ShapeType::Mesh && sh.material < 0);
         if (!imports || top.has("lights"))
             for_each_element(top, "lights",
                              [&](const JsonObject& l) { scene_.lights.push_back(light(l)); });

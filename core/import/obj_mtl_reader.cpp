@@ -124,6 +124,7 @@ std::string texture_path(const LineReader& lr, const std::vector<std::string_vie
 int add_texture(ImportedFile& out, const std::string& path, bool srgb) {
     for (size_t i = 0; i < out.textures.size(); ++i)
         if (out.textures[i].desc.file == path && out.textures[i].desc.srgb == srgb) return static_cast<int>(i);
+    out.files.push_back(path);
     ImportedTexture t;
     t.desc.file = path;
     t.desc.srgb = srgb;
