@@ -103,7 +103,7 @@ bool keep_encoded(tinygltf::Image* image, const int, std::string*, std::string*,
 
 class GltfReader {
 public:
-    explicit GltfReader(const std::string& path) : path_(path) {}
+    GltfReader(const std::string& path, bool use_materials) : path_(path), use_materials_(use_materials) {}
 
     ImportedFile read() {
         load();
@@ -112,7 +112,9 @@ public:
         for (const auto& b : model_.buffers)
             if (!b.uri.empty() && b.uri.rfind("data:", 0) != 0)
                 out_.files.push_back((fs::path(path_).parent_path() / b.uri).lexically_normal().string());
-        for (const auto& m : model_.materials) out_.materials.push_back(material(m));
+        // With a material given by the scene, the file's are neither read nor warned about.
+        if (use_materials_)
+            for (const auto& m : model_.materials) out_.materials.push_back(material(m));
         material_used_.assign(out_.materials.size(), false);
         int scene = model_.defaultScene >= 0 ? model_.defaultScene : 0;
         if (model_.scenes.empty()) {
@@ -400,7 +402,9 @@ private:
                 tv = accessor(it->second, TINYGLTF_TYPE_VEC2, "TEXCOORD_0", where);
                 if (tv->count != pv.count) fail(where + ": TEXCOORD_0 must be as long as POSITION");
             }
-            int material = p.material;
+            if (p.material >= static_cast<int>(model_.materials.size()))
+                fail(where + ": material " + std::to_string(p.material) + " does not exist");
+            int material = use_materials_ ? p.material : -1;
             if (material >= static_cast<int>(out_.materials.size())) fail(where + ": material " + std::to_string(material) + " does not exist");
             if (material < 0) {
                 if (default_material_ < 0) {
@@ -549,6 +553,7 @@ private:
     }
 
     std::string path_;
+    bool use_materials_;
     tinygltf::Model model_;
     ImportedFile out_;
     std::vector<bool> material_used_;
@@ -558,6 +563,6 @@ private:
 
 }  // namespace
 
-ImportedFile read_gltf(const std::string& path) { return GltfReader(path).read(); }
+ImportedFile read_gltf(const std::string& path, bool read_materials) { return GltfReader(path, read_materials).read(); }
 
 }  // namespace sl

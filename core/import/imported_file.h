@@ -27,8 +27,9 @@ struct ImportedFile {
     std::vector<std::string> warnings;  // one line each, without the "warning: " prefix
 };
 
-// Both throw InputError naming the file (and line or element) for anything malformed.
+// Both throw InputError naming the file (and line or element) for anything malformed. Without
+// read_materials every triangle gets one default material (the scene names its own).
 ImportedFile read_obj_mtl(const std::string& path, bool read_materials);
-ImportedFile read_gltf(const std::string& path);
+ImportedFile read_gltf(const std::string& path, bool read_materials);
 
 }  // namespace sl

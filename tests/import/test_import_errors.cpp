@@ -112,6 +112,20 @@ TEST(ImportErrors, GltfFaults) {
     j = ok;
     j["materials"][0]["emissiveFactor"] = {0, 0, 0};
     expect_gltf_rejected(dir, j, "no light");
+    // A scene that names the material for the file reads none of the file's materials, so an
+    // image they would need may be missing.
+    j = ok;
+    j["images"] = {{{"uri", "missing.png"}}};
+    j["textures"] = {{{"source", 0}}};
+    j["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"] = {{"index", 0}};
+    write_text(dir.file("bad.gltf"), j.dump());
+    write_text(dir.file("scene.json"), R"({"camera": {"position": [0.5, 0.5, 2], "look_at": [0.5, 0.5, 0]},
+        "materials": {"w": {"type": "diffuse"}},
+        "shapes": [{"type": "gltf", "file": "bad.gltf", "material": "w"}],
+        "lights": [{"type": "point", "position": [0, 0, 1], "power": [1, 1, 1]}]})");
+    ProgramResult r = run_program({"info", dir.file("scene.json")});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;
 }
 
 TEST(ImportErrors, GltfIndexOutOfRangeAndNonFiniteVertex) {
