@@ -8,14 +8,6 @@
 namespace sl {
 
 LightSet::LightSet(const SceneDesc& scene) : emitters_(scene) {
-    if (!emitters_.empty()) {  // emissive meshes: one light, sampled by power over its triangles
-        Light l;
-        l.mesh = true;
-        l.power = emitters_.power();
-        lights_.push_back(l);
-        total_power_ += average(l.power);
-        cdf_.push_back(total_power_);
-    }
     for (const LightDesc& d : scene.lights) {
         Light l;
         l.desc = d;
@@ -46,6 +38,16 @@ LightSet::LightSet(const SceneDesc& scene) : emitters_(scene) {
             break;
         }
         }
+        lights_.push_back(l);
+        total_power_ += average(l.power);
+        cdf_.push_back(total_power_);
+    }
+    // Emissive meshes: one light after the scene's own (index i < scene.lights.size() is
+    // scene.lights[i]), sampled by power over its triangles.
+    if (!emitters_.empty()) {
+        Light l;
+        l.mesh = true;
+        l.power = emitters_.power();
         lights_.push_back(l);
         total_power_ += average(l.power);
         cdf_.push_back(total_power_);
