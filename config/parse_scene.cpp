@@ -63,9 +63,16 @@ public:
         if (top.has("shapes"))
             for_each_element(top, "shapes",
                              [&](const JsonObject& s) { scene_.shapes.push_back(shape(s)); });
-        for_each_element(top, "lights",
-                         [&](const JsonObject& l) { scene_.lights.push_back(light(l)); });
-        check_lights(top);
+        // Imported files may bring their own lights: then "lights" may be omitted or empty, and
+        // whether the scene has any light is checked once they are read (core/import).
+        // (Only a glTF file, or a mesh that keeps its own materials, can bring light.)
+        bool imports = false;
+        for (const ShapeDesc& sh : scene_.shapes)
+            imports |= sh.type == ShapeType::Gltf || (sh.type == ShapeType::Mesh && sh.material < 0);
+        if (!imports || top.has("lights"))
+            for_each_element(top, "lights",
+                             [&](const JsonObject& l) { scene_.lights.push_back(light(l)); });
+        if (!imports) check_lights(top);
         if (top.has("medium")) parse_medium(top.object("medium"));
         if (top.has("time")) parse_time(top.object("time"));
         if (top.has("emission")) parse_emission(top.object("emission"));
@@ -245,7 +252,7 @@ private:
 
     ShapeDesc shape(const JsonObject& s) const {
         ShapeDesc d;
-        d.type = static_cast<ShapeType>(s.choice("type", {"quad", "box", "sphere", "mesh"}));
+        d.type = static_cast<ShapeType>(s.choice("type", {"quad", "box", "sphere", "mesh", "gltf"}));
         switch (d.type) {
             case ShapeType::Quad:
                 s.expect_keys({"type", "corner", "edge1", "edge2", "material"});
@@ -266,6 +273,7 @@ private:
                 d.radius = scalar_length(s, "radius", Range::positive());
                 break;
             case ShapeType::Mesh:
+            case ShapeType::Gltf:
                 s.expect_keys({"type", "file", "translate", "scale", "rotate_deg", "material"});
                 d.file = mesh_path(s);
                 if (s.has("translate")) d.translate = point(s, "translate");
@@ -276,7 +284,9 @@ private:
                     d.rotate_deg = to_vec3(s, "rotate_deg", s.triple("rotate_deg", Range::any()));
                 break;
         }
-        d.material = material_ref(s);
+        // A mesh or glTF file without "material" keeps its own materials.
+        const bool imported = d.type == ShapeType::Mesh || d.type == ShapeType::Gltf;
+        d.material = imported && !s.has("material") ? -1 : material_ref(s);
         return d;
     }
 

@@ -4,12 +4,17 @@
 // Filled by config/parse_scene.h; field defaults are the scene file's defaults for omitted keys
 // (defaults are in meters: `units` scales only what the file says).
 #include <cstdint>
+#include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/vec3.h"
 
 namespace sl {
+
+struct MeshData;      // core/import/mesh_data.h: triangles loaded from a mesh file
+struct TextureImage;  // core/texture.h: decoded texels, linear RGB
 
 struct CameraDesc {
     Vec3 position{0, 1, 3.5f};
@@ -28,13 +33,29 @@ struct MaterialDesc {
     Vec3 albedo{0.8f};       // diffuse
     Vec3 reflectance{1.0f};  // mirror
     float ior = 1.5f;        // dielectric
+    // From imported files (glTF, OBJ/MTL); the scene JSON sets none of these.
+    int albedo_texture = -1;    // index into SceneDesc::textures; multiplies albedo
+    Vec3 emission;              // W sr^-1 m^-2: the surface is an area light
+    int emission_texture = -1;  // multiplies emission
+    bool double_sided = false;  // emission leaves both faces (else the front: counter-clockwise)
+    bool emits() const { return !is_black(emission); }
 };
 
-enum class ShapeType { Quad, Box, Sphere, Mesh };
+enum class TextureWrap { Repeat, Clamp, MirroredRepeat };
+
+// An image file used by a material, decoded when the scene is resolved (core/import).
+struct TextureDesc {
+    std::string file;  // path, or "file.glb#image3" for an image inside a glTF file
+    bool srgb = true;  // colour textures are sRGB-encoded; decoded to linear on load
+    TextureWrap wrap_s = TextureWrap::Repeat, wrap_t = TextureWrap::Repeat;
+    std::shared_ptr<const TextureImage> image;
+};
+
+enum class ShapeType { Quad, Box, Sphere, Mesh, Gltf };
 
 struct ShapeDesc {
     ShapeType type = ShapeType::Quad;
-    int material = 0;  // index into SceneDesc::materials
+    int material = 0;  // index into SceneDesc::materials; -1: a mesh's own materials
     // quad
     Vec3 corner, edge1, edge2;
     // box
@@ -49,6 +70,9 @@ struct ShapeDesc {
     Vec3 translate;
     float scale = 1;
     Vec3 rotate_deg;
+    // mesh, gltf: the file's triangles in scene space, filled by resolve_imports
+    // (core/import/resolve_imports.h); shared, so that copying a SceneDesc stays cheap.
+    std::shared_ptr<const MeshData> mesh;
 };
 
 enum class LightType { Point, Quad, Spot, Laser };
@@ -110,6 +134,11 @@ struct SceneDesc {
     std::vector<MaterialDesc> materials;
     std::vector<ShapeDesc> shapes;
     std::vector<LightDesc> lights;
+    std::vector<TextureDesc> textures;
+    // Every file read besides the scene file (meshes, .mtl, .bin, textures), once resolved.
+    std::vector<std::string> input_files;
+    bool imports_resolved = false;
+    std::optional<CameraDesc> imported_camera;  // the first camera of an imported glTF file
     MediumDesc medium;
     TimeDesc time;
     EmissionDesc emission;

@@ -7,7 +7,7 @@
 
 namespace sl {
 
-LightSet::LightSet(const SceneDesc& scene) {
+LightSet::LightSet(const SceneDesc& scene) : emitters_(scene) {
     for (const LightDesc& d : scene.lights) {
         Light l;
         l.desc = d;
@@ -42,6 +42,16 @@ LightSet::LightSet(const SceneDesc& scene) {
         total_power_ += average(l.power);
         cdf_.push_back(total_power_);
     }
+    // Emissive meshes: one light after the scene's own (index i < scene.lights.size() is
+    // scene.lights[i]), sampled by power over its triangles.
+    if (!emitters_.empty()) {
+        Light l;
+        l.mesh = true;
+        l.power = emitters_.power();
+        lights_.push_back(l);
+        total_power_ += average(l.power);
+        cdf_.push_back(total_power_);
+    }
     for (float& c : cdf_) c = total_power_ > 0 ? c / total_power_ : 0;
 }
 
@@ -60,6 +70,20 @@ EmittedPhoton LightSet::emit(Rng& rng) const {
     EmittedPhoton e;
     e.flux = l.power / p;
     e.direct_by_photons = false;
+    if (l.mesh) {
+        const EmitterPoint ep = emitters_.sample(u1, u2);
+        Vec3 n = ep.normal;
+        float sides = 1;
+        if (ep.two_sided) {
+            sides = 2;
+            if (rng.uniform() < 0.5f) n = -n;
+        }
+        // Flux of this path: L pi A_sides / (choice of this light) / (density of the point).
+        e.flux = ep.radiance * (kPi * sides / (ep.pdf_area * p));
+        e.origin = ep.position;
+        e.direction = sample_cosine_hemisphere(n, rng.uniform(), rng.uniform());
+        return e;
+    }
     switch (l.desc.type) {
     case LightType::Point:
         e.origin = l.desc.position;
@@ -89,6 +113,21 @@ EmittedPhoton LightSet::emit(Rng& rng) const {
 
 bool LightSet::sample_direct(size_t i, Vec3 p, Vec3 n, float u1, float u2, DirectLightSample& out) const {
     const Light& l = lights_[i];
+    if (l.mesh) {
+        const EmitterPoint ep = emitters_.sample(u1, u2);
+        Vec3 v = ep.position - p;
+        float d2 = dot(v, v);
+        if (!(d2 > 0)) return false;
+        float d = std::sqrt(d2);
+        Vec3 wi = v / d;
+        float cos_p = dot(n, wi), cos_l = -dot(ep.normal, wi);
+        if (ep.two_sided) cos_l = std::abs(cos_l);
+        if (cos_p <= 0 || cos_l <= 0) return false;
+        out.irradiance = ep.radiance * (cos_l * cos_p / (d2 * ep.pdf_area));
+        out.to_light = wi;
+        out.distance = d;
+        return true;
+    }
     Vec3 target;
     switch (l.desc.type) {
     case LightType::Laser: return false;  // a collimated beam is reached by photons only

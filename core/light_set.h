@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "config/scene_desc.h"
+#include "core/emissive_triangles.h"
 #include "core/rng.h"
 
 namespace sl {
@@ -22,6 +23,7 @@ struct DirectLightSample {
 
 class LightSet {
 public:
+    // `scene` must outlive the set (emissive meshes read its textures).
     explicit LightSet(const SceneDesc& scene);
 
     bool has_emission() const { return total_power_ > 0; }
@@ -41,10 +43,12 @@ private:
         float cos_cone = 1;  // spot
         Vec3 intensity;     // point/spot: W/sr
         Vec3 power;         // RGB power in W
+        bool mesh = false;  // the emissive triangles of imported meshes (emitters_)
     };
     const Light& pick(float u, float& probability) const;
 
     std::vector<Light> lights_;
+    EmissiveTriangles emitters_;
     std::vector<float> cdf_;  // cumulative choice probability by average power
     float total_power_ = 0;
 };

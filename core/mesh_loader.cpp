@@ -97,7 +97,8 @@ TriangleSoup triangulate_shape(const ShapeDesc& shape, const std::string& scene_
         break;
     }
     case ShapeType::Mesh: return load_obj_mesh(shape, scene_source);
-    case ShapeType::Sphere: break;
+    case ShapeType::Sphere:
+    case ShapeType::Gltf: break;  // imported by core/import, never triangulated here
     }
     return s;
 }

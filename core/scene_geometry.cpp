@@ -1,5 +1,6 @@
 #include "core/scene_geometry.h"
 
+#include <cmath>
 #include <cstring>
 #include <limits>
 
@@ -39,6 +40,8 @@ void SceneGeometry::build(const SceneDesc& desc) {
     for (const ShapeDesc& s : desc.shapes) {
         if (s.type == ShapeType::Sphere) {
             add_sphere(s.center, s.radius, s.material);
+        } else if (s.mesh) {  // imported (core/import/resolve_imports.h): already in scene space
+            add_triangles(s.mesh->positions, s.mesh->indices, -1, -1, s.mesh);
         } else {
             TriangleSoup soup = triangulate_shape(s, desc.source);
             add_triangles(soup.vertices, soup.indices, s.material, -1);
@@ -63,7 +66,7 @@ SceneGeometry::~SceneGeometry() {
 }
 
 void SceneGeometry::add_triangles(const std::vector<Vec3>& v, const std::vector<uint32_t>& idx,
-                                  int material, int light) {
+                                  int material, int light, std::shared_ptr<const MeshData> mesh) {
     RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
     auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0,
                                                            RTC_FORMAT_FLOAT3, 3 * sizeof(float), v.size()));
@@ -79,9 +82,14 @@ void SceneGeometry::add_triangles(const std::vector<Vec3>& v, const std::vector<
     rtcCommitGeometry(g);
     unsigned id = rtcAttachGeometry(scene_, g);
     rtcReleaseGeometry(g);
-    if (geom_material_.size() <= id) { geom_material_.resize(id + 1, -1); geom_light_.resize(id + 1, -1); }
+    if (geom_material_.size() <= id) {
+        geom_material_.resize(id + 1, -1);
+        geom_light_.resize(id + 1, -1);
+        geom_mesh_.resize(id + 1);
+    }
     geom_material_[id] = material;
     geom_light_[id] = light;
+    geom_mesh_[id] = std::move(mesh);
     triangles_ += idx.size() / 3;
 }
 
@@ -94,7 +102,11 @@ void SceneGeometry::add_sphere(Vec3 c, float r, int material) {
     rtcCommitGeometry(g);
     unsigned id = rtcAttachGeometry(scene_, g);
     rtcReleaseGeometry(g);
-    if (geom_material_.size() <= id) { geom_material_.resize(id + 1, -1); geom_light_.resize(id + 1, -1); }
+    if (geom_material_.size() <= id) {
+        geom_material_.resize(id + 1, -1);
+        geom_light_.resize(id + 1, -1);
+        geom_mesh_.resize(id + 1);
+    }
     geom_material_[id] = material;
     bmin_ = vmin(bmin_, c - Vec3(r));
     bmax_ = vmax(bmax_, c + Vec3(r));
@@ -122,6 +134,27 @@ bool SceneGeometry::intersect(Vec3 o, Vec3 d, float tnear, float tfar, SurfaceHi
     hit.normal = len > 0 ? n / len : Vec3(0, 0, 1);
     hit.material = geom_material_[rh.hit.geomID];
     hit.light = geom_light_[rh.hit.geomID];
+    hit.shading_normal = hit.normal;
+    hit.front = hit.normal;  // Embree's Ng is (v1 - v0) x (v2 - v0): the counter-clockwise side
+    if (const MeshData* m = geom_mesh_[rh.hit.geomID].get()) {
+        const size_t prim = rh.hit.primID;
+        hit.material = m->tri_material[prim];
+        const uint32_t* tri = &m->indices[3 * prim];
+        const float bu = rh.hit.u, bv = rh.hit.v, bw = 1 - bu - bv;
+        if (!m->normals.empty()) {
+            Vec3 ns = m->normals[tri[0]] * bw + m->normals[tri[1]] * bu + m->normals[tri[2]] * bv;
+            float l = length(ns);
+            if (l > 0 && std::isfinite(l)) {
+                ns = ns / l;
+                hit.shading_normal = dot(ns, hit.normal) < 0 ? -ns : ns;
+            }
+        }
+        if (!m->uvs.empty()) {
+            const float* uv = m->uvs.data();
+            hit.tex_u = uv[2 * tri[0]] * bw + uv[2 * tri[1]] * bu + uv[2 * tri[2]] * bv;
+            hit.tex_v = uv[2 * tri[0] + 1] * bw + uv[2 * tri[1] + 1] * bu + uv[2 * tri[2] + 1] * bv;
+        }
+    }
     return true;
 }
 

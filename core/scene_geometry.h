@@ -4,10 +4,12 @@
 #include <embree3/rtcore.h>
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "config/scene_desc.h"
+#include "core/import/mesh_data.h"
 
 namespace sl {
 
@@ -15,6 +17,12 @@ struct SurfaceHit {
     float t = 0;
     Vec3 position;
     Vec3 normal;      // unit geometric normal (not oriented)
+    // Unit shading normal: interpolated from an imported mesh's vertex normals, else the
+    // geometric one; on the same side as `normal`. Scattering and gathering use it; ray
+    // offsets and side tests use the geometric normal.
+    Vec3 shading_normal;
+    Vec3 front;         // the counter-clockwise face's side (+-normal): an emitter's front
+    float tex_u = 0, tex_v = 0;  // texture coordinates, when the mesh has them
     int material = -1;  // index into SceneDesc::materials; -1 for a light's surface
     int light = -1;     // index into SceneDesc::lights when the surface is a quad light
 };
@@ -37,12 +45,14 @@ public:
 
 private:
     void build(const SceneDesc& desc);
-    void add_triangles(const std::vector<Vec3>& v, const std::vector<uint32_t>& idx, int material, int light);
+    void add_triangles(const std::vector<Vec3>& v, const std::vector<uint32_t>& idx, int material, int light,
+                       std::shared_ptr<const MeshData> mesh = nullptr);
     void add_sphere(Vec3 center, float radius, int material);
 
     RTCDevice device_ = nullptr;
     RTCScene scene_ = nullptr;
     std::vector<int> geom_material_, geom_light_;  // by Embree geometry ID
+    std::vector<std::shared_ptr<const MeshData>> geom_mesh_;  // imported meshes: per-triangle data
     Vec3 bmin_{1e30f}, bmax_{-1e30f};
     size_t triangles_ = 0;
 };

@@ -31,6 +31,8 @@
 #include "pipeline/scene_checks.h"
 #include "stages/output/atomic_file.h"
 #include "pipeline/scene_info.h"
+#include "core/import/model_scene.h"
+#include "core/import/resolve_imports.h"
 
 namespace sl {
 namespace {
@@ -105,7 +107,10 @@ void refuse_cube_as_scene(const std::string& path) {
 
 SceneDesc load_scene(const RunOptions& o) {
     if (!o.scene_path.empty()) refuse_cube_as_scene(o.scene_path);
-    SceneDesc scene = o.scene_path.empty() ? parse_default_scene() : parse_scene_file(o.scene_path);
+    SceneDesc scene = o.scene_path.empty()              ? parse_default_scene()
+                      : is_model_file(o.scene_path) ? scene_for_model(o.scene_path)
+                                                    : parse_scene_file(o.scene_path);
+    resolve_imports(scene);  // meshes, materials, textures and lights of imported files
     apply_overrides(scene, o.overrides);
     return scene;
 }

@@ -1,5 +1,7 @@
 #include "pipeline/memory_plan.h"
 
+#include "core/import/resolve_imports.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -61,6 +63,8 @@ uint64_t fixed_overhead_bytes(const SceneDesc& scene) {
     // way out included); 260 covers them all. And the process as it stands (libraries, the
     // scene's BVH): measured, not guessed.
     uint64_t encoder = pixels * 260;
+    // Imported meshes and textures: their arrays, and Embree's copy and BVH.
+    encoder += imported_mesh_bytes(scene) + imported_bvh_bytes(scene) + texture_bytes(scene);
     return photons + frames + volume + encoder + current_rss_bytes() + (16ull << 20);
 }
 

@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "core/errors.h"
+#include "core/import/resolve_imports.h"
 #include "pipeline/memory_plan.h"
 #include "pipeline/scene_checks.h"
 #include "stages/render/render_context.h"
@@ -46,7 +47,11 @@ void print_scene_info(std::ostream& out, std::ostream& err, const SceneDesc& s, 
     }
     out << "emission:   " << (s.emission.mode == EmissionMode::Constant ? "constant" : "pulse") << "\n"
         << "render:     " << s.render.passes << " passes x " << s.render.photons_per_pass << " photons, max_depth "
-        << s.render.max_depth << ", alpha " << s.render.alpha << "\n";
+        << s.render.max_depth << ", alpha " << s.render.alpha << "\n"
+        << "imports:    " << imported_triangles(s) << " imported triangles (" << emissive_triangles(s) << " emissive; "
+        << format_bytes(imported_mesh_bytes(s)) << " of vertex data, about " << format_bytes(imported_bvh_bytes(s))
+        << " more in the BVH); " << s.textures.size() << " texture" << (s.textures.size() == 1 ? "" : "s") << ", "
+        << format_bytes(texture_bytes(s)) << "\n";
     for (const std::string& w : scene_warnings(ctx, f)) err << w << "\n";
 
     // Memory: the time buckets (what K divides) and the fixed part (what it does not); a

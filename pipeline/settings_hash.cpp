@@ -35,12 +35,15 @@ std::string settings_fingerprint(const SceneDesc& s, int sections, Strategy stra
         t << "shape " << static_cast<int>(sh.type) << ' ' << sh.material << ' ' << sh.corner << ' ' << sh.edge1 << ' '
           << sh.edge2 << ' ' << sh.min << ' ' << sh.max << ' ' << sh.center << ' ' << sh.radius << ' ' << sh.translate
           << ' ' << sh.scale << ' ' << sh.rotate_deg << '\n';
-        if (sh.type == ShapeType::Mesh) {
+        if (sh.type == ShapeType::Mesh && !s.imports_resolved) {
             // Never blindly: a mesh swapped for a FIFO or /dev/zero must not hang the run.
             read_input_chunks(sh.file, kMaxMeshBytes, s.source + ": mesh '" + sh.file + "'", "mesh file",
                               [&](const char* p, size_t n) { meshes.bytes(p, n); });
         }
     }
+    for (const std::string& file : s.input_files)  // the scene, imported meshes, libraries, buffers, textures
+        read_input_chunks(file, uint64_t(4) << 30, s.source + ": '" + file + "'", "input file",
+                          [&](const char* p, size_t n) { meshes.bytes(p, n); });
     for (const LightDesc& l : s.lights)
         t << "light " << static_cast<int>(l.type) << ' ' << l.position << ' ' << l.corner << ' ' << l.edge1 << ' ' << l.edge2
           << ' ' << l.direction << ' ' << l.power << ' ' << l.radiance << ' ' << l.cone_deg << ' ' << l.radius << '\n';

@@ -16,5 +16,8 @@ out=$(mktemp -d)
 ./build-asan/slowlight render samples/cornell_box.json --width 48 --height 48 --passes 3 --photons 5000 \
     --frames 6 --sections 2 -o "$out/v.mp4" --exr-dir "$out/exr" --cube "$out/c.npy" --no-progress
 ./build-asan/slowlight retime "$out/c.npy" --emission pulse -o "$out/p.mkv"
+# Imported OBJ/MTL: the strict reader, per-triangle materials, smooth normals, emissive triangles.
+./build-asan/slowlight render samples/cornell_box_obj.json --width 32 --height 32 --passes 2 --photons 5000 \
+    --frames 4 -o "$out/obj.mp4" --no-progress
 rm -rf "$out"
 echo "sanitize: unit tests and a small render passed under ASan+UBSan" >&2

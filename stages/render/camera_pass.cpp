@@ -13,6 +13,7 @@
 
 #include "core/rng.h"
 #include "core/specular_path.h"
+#include "core/surface_material.h"
 
 namespace sl {
 
@@ -82,9 +83,15 @@ struct PixelTracer {
                 return;
             }
             const MaterialDesc& m = sc.materials[hit.material];
-            Vec3 nf = dot(d, hit.normal) < 0 ? hit.normal : -hit.normal;
+            const bool toward = dot(d, hit.normal) < 0;
+            Vec3 nf = toward ? hit.normal : -hit.normal;
+            if (m.emits()) {  // an emissive mesh seen directly (or through specular surfaces)
+                Vec3 le = emission_at(sc, m, hit, d);
+                if (!is_black(le)) deposit(buffer, ctx.timeline, pixel, tof ? leg_ns : 0.0, beta * le);
+            }
             if (m.type == MaterialType::Diffuse) {
-                store_visible_point(pixel, hit.position, hit.t, nf, beta * m.albedo, leg_ns, specular, rng);
+                Vec3 ns = toward ? hit.shading_normal : -hit.shading_normal;
+                store_visible_point(pixel, hit.position, hit.t, nf, ns, beta * albedo_at(sc, m, hit), leg_ns, specular, rng);
                 return;
             }
             if (++specular >= sc.render.max_depth) return;
@@ -111,13 +118,15 @@ struct PixelTracer {
         beta *= medium->transmittance(t1 - t0);
     }
 
-    void store_visible_point(size_t pixel, Vec3 p, float hit_t, Vec3 nf, Vec3 albedo_beta, double leg_ns,
+    // nf: the geometric normal facing the path (ray offsets, side tests); ns: the shading
+    // normal on the same side (cosines, gathering).
+    void store_visible_point(size_t pixel, Vec3 p, float hit_t, Vec3 nf, Vec3 ns, Vec3 albedo_beta, double leg_ns,
                              int specular, Rng& rng) {
         const SceneDesc& sc = ctx.scene;
         const bool tof = sc.render.camera_tof;
         const double back_ns = tof ? leg_ns : 0.0;
         Vec3 f = albedo_beta * (1.0f / kPi);  // Lambertian BRDF times camera throughput
-        vp = VisiblePoint{p, nf, f, back_ns, static_cast<uint32_t>(sc.render.max_depth - specular)};
+        vp = VisiblePoint{p, ns, f, back_ns, static_cast<uint32_t>(sc.render.max_depth - specular)};
         has_visible_point = true;
         if (!buffer.ambient.empty()) {
             Vec3 a = albedo_beta * sc.render.ambient;
@@ -129,7 +138,8 @@ struct PixelTracer {
         for (size_t i = 0; i < ctx.lights.count(); ++i) {
             DirectLightSample s;
             float u1 = rng.uniform(), u2 = rng.uniform();
-            if (!ctx.lights.sample_direct(i, p, nf, u1, u2, s)) continue;
+            if (!ctx.lights.sample_direct(i, p, ns, u1, u2, s)) continue;
+            if (dot(s.to_light, nf) <= 0) continue;  // below the true surface: no leak through it
             const double t = s.distance / kSpeedOfLight + back_ns;
             // A section that keeps no slot for this arrival (an early section, light arriving
             // after its end) would drop it: no shadow ray is needed to find that out.

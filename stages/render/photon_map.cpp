@@ -8,6 +8,7 @@
 
 #include "core/rng.h"
 #include "core/specular_path.h"
+#include "core/surface_material.h"
 
 namespace sl {
 namespace {
@@ -68,16 +69,21 @@ struct PhotonPath {
             if (t >= cut) return;
             if (hit.light >= 0) return;  // lights absorb
             const MaterialDesc& m = sc.materials[hit.material];
-            Vec3 nf = dot(d, hit.normal) < 0 ? hit.normal : -hit.normal;
+            const bool toward = dot(d, hit.normal) < 0;
+            Vec3 nf = toward ? hit.normal : -hit.normal;
             if (m.type == MaterialType::Diffuse) {
+                Vec3 ns = toward ? hit.shading_normal : -hit.shading_normal;
                 if (depth >= 2 || e.direct_by_photons)
                     out.push_back({hit.position.x, hit.position.y, hit.position.z, flux.x, flux.y, flux.z,
-                                   encode_normal(nf), static_cast<uint32_t>(depth), t});
+                                   encode_normal(ns), static_cast<uint32_t>(depth), t});
+                const Vec3 albedo = albedo_at(sc, m, hit);
                 // Russian roulette from the third vertex on: survive with the albedo's maximum.
-                float q = depth >= 3 ? std::min(1.0f, max_component(m.albedo)) : 1.0f;
+                float q = depth >= 3 ? std::min(1.0f, max_component(albedo)) : 1.0f;
                 if (q <= 0 || (q < 1 && rng.uniform() >= q)) return;
-                flux = flux * m.albedo * (1.0f / q);
-                d = sample_cosine_hemisphere(nf, rng.uniform(), rng.uniform());
+                flux = flux * albedo * (1.0f / q);
+                // Scatter about the shading normal; a direction below the true surface ends the path.
+                d = sample_cosine_hemisphere(ns, rng.uniform(), rng.uniform());
+                if (dot(d, nf) <= 0) return;
                 o = hit.position + nf * ray_epsilon(hit.position, hit.t);
             } else {
                 flux *= follow_specular(m, hit, o, d, inside, inside_ior, rng);

@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/import/resolve_imports.h"
+
 namespace sl {
 
 RenderContext::RenderContext(const SceneDesc& desc)
-    : scene(desc), geometry(desc), lights(desc), camera(desc.camera) {
+    : scene(with_imports(desc)), geometry(scene), lights(scene), camera(desc.camera) {
     timeline.start_ns = desc.time.start_ns;
     timeline.end_ns = desc.time.end_ns;
     timeline.frames = desc.time.frames;

@@ -1,0 +1,79 @@
+#include "core/emissive_triangles.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/import/mesh_data.h"
+#include "core/sampling.h"
+#include "core/texture.h"
+
+namespace sl {
+
+EmissiveTriangles::EmissiveTriangles(const SceneDesc& scene) : scene_(&scene) {
+    std::vector<double> weight;
+    for (const ShapeDesc& s : scene.shapes) {
+        if (!s.mesh) continue;
+        const MeshData& m = *s.mesh;
+        for (size_t t = 0; t < m.triangle_count(); ++t) {
+            const MaterialDesc& mat = scene.materials[static_cast<size_t>(m.tri_material[t])];
+            if (!mat.emits()) continue;
+            const uint32_t* idx = &m.indices[3 * t];
+            Triangle tri;
+            tri.v0 = m.positions[idx[0]];
+            tri.e1 = m.positions[idx[1]] - tri.v0;
+            tri.e2 = m.positions[idx[2]] - tri.v0;
+            Vec3 c = cross(tri.e1, tri.e2);
+            float len = length(c);
+            if (!(len > 0) || !std::isfinite(len)) continue;
+            tri.normal = c / len;
+            tri.area = 0.5f * len;
+            tri.radiance = mat.emission;
+            tri.texture = mat.emission_texture;
+            tri.two_sided = mat.double_sided;
+            for (int k = 0; k < 3; ++k) {
+                tri.uv[2 * k] = m.uvs.empty() ? 0 : m.uvs[2 * idx[k]];
+                tri.uv[2 * k + 1] = m.uvs.empty() ? 0 : m.uvs[2 * idx[k] + 1];
+            }
+            Vec3 mean = tri.texture >= 0 ? tri.radiance * scene.textures[static_cast<size_t>(tri.texture)].image->mean
+                                         : tri.radiance;
+            Vec3 p = mean * (kPi * tri.area * (tri.two_sided ? 2.0f : 1.0f));
+            if (!(average(p) > 0)) continue;
+            power_ += p;
+            weight.push_back(average(p));
+            tris_.push_back(tri);
+        }
+    }
+    double total = 0;
+    for (double w : weight) total += w;
+    double run = 0;
+    for (double w : weight) {
+        run += w;
+        cdf_.push_back(static_cast<float>(run / total));
+        prob_.push_back(static_cast<float>(w / total));
+    }
+    if (!cdf_.empty()) cdf_.back() = 1;
+}
+
+EmitterPoint EmissiveTriangles::sample(float u1, float u2) const {
+    size_t i = static_cast<size_t>(std::upper_bound(cdf_.begin(), cdf_.end(), u1) - cdf_.begin());
+    i = std::min(i, tris_.size() - 1);
+    const Triangle& t = tris_[i];
+    const float lo = i > 0 ? cdf_[i - 1] : 0.0f;
+    const float ur = std::clamp((u1 - lo) / std::max(prob_[i], 1e-30f), 0.0f, 1.0f);
+    // Uniform on the triangle: b1 = 1 - sqrt(ur), b2 = u2 sqrt(ur).
+    const float su = std::sqrt(ur), b1 = 1 - su, b2 = u2 * su;
+    EmitterPoint e;
+    e.position = t.v0 + t.e1 * b1 + t.e2 * b2;
+    e.normal = t.normal;
+    e.two_sided = t.two_sided;
+    e.radiance = t.radiance;
+    if (t.texture >= 0) {
+        float u = t.uv[0] + (t.uv[2] - t.uv[0]) * b1 + (t.uv[4] - t.uv[0]) * b2;
+        float v = t.uv[1] + (t.uv[3] - t.uv[1]) * b1 + (t.uv[5] - t.uv[1]) * b2;
+        e.radiance = e.radiance * scene_->textures[static_cast<size_t>(t.texture)].image->sample(u, v);
+    }
+    e.pdf_area = prob_[i] / t.area;
+    return e;
+}
+
+}  // namespace sl

@@ -1,0 +1,47 @@
+#pragma once
+// The emissive triangles of imported meshes as one light: flat arrays, a triangle chosen in
+// proportion to its power (area x radiance, times its emission texture's mean), a point on
+// it uniformly. Photons leave it cosine-distributed; direct light samples a point on it.
+#include <cstdint>
+#include <vector>
+
+#include "config/scene_desc.h"
+
+namespace sl {
+
+struct EmitterPoint {
+    Vec3 position;
+    Vec3 normal;     // unit front normal (counter-clockwise side)
+    Vec3 radiance;   // W sr^-1 m^-2 at that point, from the front (and the back if two-sided)
+    float pdf_area;  // probability density of the point per m^2 (triangle choice included)
+    bool two_sided;
+};
+
+class EmissiveTriangles {
+public:
+    explicit EmissiveTriangles(const SceneDesc& scene);
+
+    bool empty() const { return cdf_.empty(); }
+    size_t size() const { return cdf_.size(); }
+    Vec3 power() const { return power_; }  // W, both faces of two-sided triangles included
+
+    // A point by power: u1 picks the triangle (and, rescaled, is reused with u2 to place the point).
+    EmitterPoint sample(float u1, float u2) const;
+
+private:
+    struct Triangle {
+        Vec3 v0, e1, e2, normal;
+        Vec3 radiance;   // the material's factor
+        float area;
+        int texture;     // emission texture or -1
+        float uv[6];
+        bool two_sided;
+    };
+    const SceneDesc* scene_;
+    std::vector<Triangle> tris_;
+    std::vector<float> cdf_;  // cumulative, normalised
+    std::vector<float> prob_;
+    Vec3 power_;
+};
+
+}  // namespace sl

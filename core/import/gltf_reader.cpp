@@ -1,0 +1,568 @@
+// glTF 2.0 (.gltf with .bin, or .glb) through tinygltf: the default scene's meshes with their
+// node transforms, vertex normals and UVs, materials, KHR_lights_punctual lights and first
+// camera. Every accessor is bounds-checked here (tinygltf does not), and images are kept
+// encoded: they are decoded later, and only when a material that is drawn uses them.
+#include <tiny_gltf.h>
+
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <map>
+#include <set>
+#include <tuple>
+
+#include "core/errors.h"
+#include "core/import/imported_file.h"
+#include "core/import/light_mapping.h"
+
+namespace sl {
+namespace fs = std::filesystem;
+
+namespace {
+
+using Mat4 = std::array<double, 16>;  // column-major, as glTF stores it
+
+Mat4 identity() { return {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}; }
+
+Mat4 mul(const Mat4& a, const Mat4& b) {
+    Mat4 r{};
+    for (int c = 0; c < 4; ++c)
+        for (int rr = 0; rr < 4; ++rr) {
+            double s = 0;
+            for (int k = 0; k < 4; ++k) s += a[k * 4 + rr] * b[c * 4 + k];
+            r[c * 4 + rr] = s;
+        }
+    return r;
+}
+
+Vec3 apply_point(const Mat4& m, Vec3 p) {
+    return {static_cast<float>(m[0] * p.x + m[4] * p.y + m[8] * p.z + m[12]),
+            static_cast<float>(m[1] * p.x + m[5] * p.y + m[9] * p.z + m[13]),
+            static_cast<float>(m[2] * p.x + m[6] * p.y + m[10] * p.z + m[14])};
+}
+
+Vec3 apply_vector(const Mat4& m, Vec3 v) {
+    return {static_cast<float>(m[0] * v.x + m[4] * v.y + m[8] * v.z),
+            static_cast<float>(m[1] * v.x + m[5] * v.y + m[9] * v.z),
+            static_cast<float>(m[2] * v.x + m[6] * v.y + m[10] * v.z)};
+}
+
+double det3(const Mat4& m) {
+    return m[0] * (m[5] * m[10] - m[9] * m[6]) - m[4] * (m[1] * m[10] - m[9] * m[2]) +
+           m[8] * (m[1] * m[6] - m[5] * m[2]);
+}
+
+// The inverse transpose of the upper 3x3 (for normals), as a Mat4 without translation.
+Mat4 normal_matrix(const Mat4& m) {
+    const double d = det3(m);
+    Mat4 r = identity();
+    if (d == 0) return r;
+    // cofactor matrix / det = inverse transpose
+    auto at = [&](int row, int col) { return m[col * 4 + row]; };
+    double c[3][3];
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+            int i1 = (i + 1) % 3, i2 = (i + 2) % 3, j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+            c[i][j] = at(i1, j1) * at(i2, j2) - at(i1, j2) * at(i2, j1);
+        }
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) r[j * 4 + i] = c[i][j] / d;
+    return r;
+}
+
+Mat4 local_matrix(const tinygltf::Node& n) {
+    if (n.matrix.size() == 16) {
+        Mat4 m;
+        for (int i = 0; i < 16; ++i) m[i] = n.matrix[i];
+        return m;
+    }
+    Mat4 t = identity(), r = identity(), s = identity();
+    if (n.translation.size() == 3) { t[12] = n.translation[0]; t[13] = n.translation[1]; t[14] = n.translation[2]; }
+    if (n.rotation.size() == 4) {
+        double x = n.rotation[0], y = n.rotation[1], z = n.rotation[2], w = n.rotation[3];
+        double l = std::sqrt(x * x + y * y + z * z + w * w);
+        if (l > 0) { x /= l; y /= l; z /= l; w /= l; }
+        r = {1 - 2 * (y * y + z * z), 2 * (x * y + z * w), 2 * (x * z - y * w), 0,
+             2 * (x * y - z * w), 1 - 2 * (x * x + z * z), 2 * (y * z + x * w), 0,
+             2 * (x * z + y * w), 2 * (y * z - x * w), 1 - 2 * (x * x + y * y), 0,
+             0, 0, 0, 1};
+    }
+    if (n.scale.size() == 3) { s[0] = n.scale[0]; s[5] = n.scale[1]; s[10] = n.scale[2]; }
+    return mul(t, mul(r, s));
+}
+
+// Keeps an image's encoded bytes (tinygltf would decode it with stb): decoding happens later,
+// through OpenImageIO, for the images a drawn material uses.
+bool keep_encoded(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
+                  const unsigned char* bytes, int size, void*) {
+    image->image.assign(bytes, bytes + std::max(size, 0));
+    image->as_is = true;
+    return true;
+}
+
+class GltfReader {
+public:
+    GltfReader(const std::string& path, bool use_materials) : path_(path), use_materials_(use_materials) {}
+
+    ImportedFile read() {
+        load();
+        check_extensions();
+        out_.files.push_back(path_);
+        for (const auto& b : model_.buffers)
+            if (!b.uri.empty() && b.uri.rfind("data:", 0) != 0)
+                out_.files.push_back((fs::path(path_).parent_path() / b.uri).lexically_normal().string());
+        // With a material given by the scene, the file's are neither read nor warned about.
+        if (use_materials_)
+            for (const auto& m : model_.materials) out_.materials.push_back(material(m));
+        material_used_.assign(out_.materials.size(), false);
+        int scene = model_.defaultScene >= 0 ? model_.defaultScene : 0;
+        if (model_.scenes.empty()) {
+            // No scene: every node without a parent is a root.
+            std::vector<bool> child(model_.nodes.size(), false);
+            for (const auto& n : model_.nodes)
+                for (int c : n.children)
+                    if (c >= 0 && static_cast<size_t>(c) < child.size()) child[static_cast<size_t>(c)] = true;
+            for (size_t i = 0; i < model_.nodes.size(); ++i)
+                if (!child[i]) visit(static_cast<int>(i), identity(), 0);
+        } else {
+            if (static_cast<size_t>(scene) >= model_.scenes.size()) fail("the default scene " + std::to_string(scene) + " does not exist");
+            for (int n : model_.scenes[static_cast<size_t>(scene)].nodes) visit(n, identity(), 0);
+        }
+        if (out_.mesh.indices.empty() && out_.lights.empty())
+            fail("the default scene has no triangles and no lights");
+        MeshData& mesh = out_.mesh;
+        mesh.positions.shrink_to_fit();
+        mesh.normals.shrink_to_fit();
+        mesh.uvs.shrink_to_fit();
+        mesh.indices.shrink_to_fit();
+        mesh.tri_material.shrink_to_fit();
+        for (size_t i = 0; i < out_.materials.size(); ++i)
+            if (material_used_[i])
+                for (const std::string& w : material_warnings_[i]) out_.warnings.push_back(w);
+        return std::move(out_);
+    }
+
+private:
+    [[noreturn]] void fail(const std::string& why) const { throw InputError(path_ + ": " + why); }
+
+    void warn(const std::string& why) { out_.warnings.push_back(path_ + ": " + why); }
+
+    void load() {
+        tinygltf::TinyGLTF loader;
+        loader.SetImageLoader(keep_encoded, nullptr);
+        std::string err, warn;
+        std::error_code ec;
+        if (!fs::is_regular_file(path_, ec)) fail("not found or not a regular file");
+        auto size = fs::file_size(path_, ec);
+        if (ec || size == 0) fail("is empty or unreadable");
+        if (size > (uintmax_t(2) << 30)) fail("is larger than 2 GiB");
+        std::string ext = fs::path(path_).extension().string();
+        for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        char magic[4] = {};
+        {
+            std::FILE* f = std::fopen(path_.c_str(), "rb");
+            if (!f) fail("cannot be opened");
+            size_t got = std::fread(magic, 1, 4, f);
+            std::fclose(f);
+            if (got < 4) fail("is too short to be glTF");
+        }
+        const bool binary = std::memcmp(magic, "glTF", 4) == 0;
+        bool ok = binary ? loader.LoadBinaryFromFile(&model_, &err, &warn, path_)
+                         : loader.LoadASCIIFromFile(&model_, &err, &warn, path_);
+        if (!ok) {
+            std::string msg = err.empty() ? "cannot be parsed as glTF" : err;
+            for (char& c : msg) if (c == '\n' || c == '\r') c = ' ';
+            while (!msg.empty() && msg.back() == ' ') msg.pop_back();
+            fail(msg.size() > 400 ? msg.substr(0, 400) + "..." : msg);
+        }
+        // tinygltf accepts a buffer shorter than its byteLength: that is a missing .bin in effect.
+        for (size_t i = 0; i < model_.buffers.size(); ++i)
+            if (model_.buffers[i].data.empty())
+                fail("buffer " + std::to_string(i) + " (" + model_.buffers[i].uri + ") could not be loaded");
+    }
+
+    void check_extensions() {
+        static const std::set<std::string> supported = {
+            "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_materials_transmission",
+            "KHR_materials_ior"};
+        for (const std::string& e : model_.extensionsRequired)
+            if (!supported.count(e))
+                fail("requires the extension " + e + ", which is not supported" +
+                     (e == "KHR_draco_mesh_compression" || e == "EXT_meshopt_compression"
+                          ? " (export without mesh compression)"
+                          : ""));
+        for (const std::string& e : model_.extensionsUsed)
+            if (!supported.count(e)) warn("the extension " + e + " is ignored");
+    }
+
+    // --- materials ------------------------------------------------------------------------
+
+    int texture(int index, bool srgb, const std::string& material, const char* role) {
+        if (index < 0) return -1;
+        if (static_cast<size_t>(index) >= model_.textures.size())
+            fail("material '" + material + "': " + role + " texture " + std::to_string(index) + " does not exist");
+        const tinygltf::Texture& t = model_.textures[static_cast<size_t>(index)];
+        if (t.source < 0 || static_cast<size_t>(t.source) >= model_.images.size())
+            fail("texture " + std::to_string(index) + " names no existing image");
+        const tinygltf::Image& img = model_.images[static_cast<size_t>(t.source)];
+        ImportedTexture it;
+        it.desc.srgb = srgb;
+        if (t.sampler >= 0 && static_cast<size_t>(t.sampler) < model_.samplers.size()) {
+            const auto& s = model_.samplers[static_cast<size_t>(t.sampler)];
+            auto wrap = [](int w) {
+                return w == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE     ? TextureWrap::Clamp
+                       : w == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT ? TextureWrap::MirroredRepeat
+                                                                    : TextureWrap::Repeat;
+            };
+            it.desc.wrap_s = wrap(s.wrapS);
+            it.desc.wrap_t = wrap(s.wrapT);
+        }
+        const bool external = !img.uri.empty() && img.uri.rfind("data:", 0) != 0;
+        std::string name = external ? (fs::path(path_).parent_path() / img.uri).lexically_normal().string()
+                                    : path_ + "#image" + std::to_string(t.source);
+        if (img.image.empty())
+            fail("image " + std::to_string(t.source) + (external ? " (" + name + ")" : std::string()) +
+                 " could not be loaded" + (external ? ": file missing or unreadable" : ""));
+        it.desc.file = name;
+        it.bytes = img.image;
+        std::string mime = img.mimeType;
+        it.format = mime == "image/jpeg" ? "jpg" : mime == "image/png" ? "png" : "";
+        if (it.format.empty()) {
+            std::string ext = fs::path(external ? img.uri : std::string()).extension().string();
+            it.format = ext.size() > 1 ? ext.substr(1) : "png";
+        }
+        if (external) out_.files.push_back(name);
+        const int id = static_cast<int>(out_.textures.size());
+        out_.textures.push_back(std::move(it));
+        return id;
+    }
+
+    static double ext_number(const tinygltf::ExtensionMap& ext, const char* name, const char* key, double dflt,
+                             bool* present = nullptr) {
+        auto it = ext.find(name);
+        if (it == ext.end()) return dflt;
+        if (present) *present = true;
+        if (!it->second.Has(key)) return dflt;
+        const tinygltf::Value& v = it->second.Get(key);
+        return v.IsNumber() ? v.GetNumberAsDouble() : dflt;
+    }
+
+    MaterialDesc material(const tinygltf::Material& gm) {
+        MaterialDesc m;
+        const std::string name = gm.name.empty() ? "material " + std::to_string(out_.materials.size()) : gm.name;
+        m.name = name;
+        std::vector<std::string> notes;
+        const auto& pbr = gm.pbrMetallicRoughness;
+        Vec3 base{1, 1, 1};
+        if (pbr.baseColorFactor.size() >= 3)
+            base = {static_cast<float>(pbr.baseColorFactor[0]), static_cast<float>(pbr.baseColorFactor[1]),
+                    static_cast<float>(pbr.baseColorFactor[2])};
+        base = vmin(vmax(base, Vec3(0)), Vec3(1));
+        const double metallic = pbr.metallicFactor, roughness = pbr.roughnessFactor;
+        bool has_transmission = false, has_strength = false;
+        const double transmission =
+            ext_number(gm.extensions, "KHR_materials_transmission", "transmissionFactor", 0, &has_transmission);
+        const double ior = ext_number(gm.extensions, "KHR_materials_ior", "ior", 1.5);
+        const double strength =
+            ext_number(gm.extensions, "KHR_materials_emissive_strength", "emissiveStrength", 1, &has_strength);
+        if (gm.emissiveFactor.size() == 3)
+            m.emission = Vec3(static_cast<float>(gm.emissiveFactor[0]), static_cast<float>(gm.emissiveFactor[1]),
+                              static_cast<float>(gm.emissiveFactor[2])) *
+                         static_cast<float>(strength);
+        if (!is_finite(m.emission) || m.emission.x < 0 || m.emission.y < 0 || m.emission.z < 0)
+            fail("material '" + name + "': the emission is negative or not finite");
+        m.double_sided = gm.doubleSided;
+        if (transmission > 0.5) {
+            m.type = MaterialType::Dielectric;
+            m.ior = static_cast<float>(ior > 0 ? ior : 1.5);
+            if (pbr.baseColorTexture.index >= 0 || max_component(Vec3(1) - base) > 0.01f)
+                notes.push_back("the glass is clear: base colour and its texture are ignored");
+            if (roughness > 0.1) notes.push_back("rough glass is drawn smooth");
+        } else if (metallic >= 0.9 && roughness <= 0.1) {
+            m.type = MaterialType::Mirror;
+            m.reflectance = base;
+            if (pbr.baseColorTexture.index >= 0) notes.push_back("a mirror keeps no texture (base colour factor only)");
+        } else {
+            m.albedo = base;
+            m.albedo_texture = texture(pbr.baseColorTexture.index, true, name, "base colour");
+            if (pbr.baseColorTexture.texCoord != 0) notes.push_back("only TEXCOORD_0 is used");
+            if (metallic >= 0.9) notes.push_back("rough metal (roughness " + std::to_string(roughness).substr(0, 4) +
+                                                 ") is drawn diffuse with the base colour");
+            else if (metallic > 0.1) notes.push_back("partly metallic: drawn diffuse with the base colour");
+            if (transmission > 0) notes.push_back("partial transmission is ignored");
+        }
+        if (m.type != MaterialType::Diffuse && m.emits()) {
+            notes.push_back("a mirror or glass surface does not emit here");
+            m.emission = Vec3(0);
+        }
+        if (m.emits()) m.emission_texture = texture(gm.emissiveTexture.index, true, name, "emissive");
+        if (gm.alphaMode == "BLEND" || gm.alphaMode == "MASK")
+            notes.push_back("alpha " + gm.alphaMode + " is ignored (the surface is opaque)");
+        if (gm.normalTexture.index >= 0) notes.push_back("the normal map is ignored");
+        if (pbr.metallicRoughnessTexture.index >= 0) notes.push_back("the metallic-roughness texture is ignored");
+        std::vector<std::string> lines;
+        if (!notes.empty()) {
+            std::string all;
+            for (const auto& n : notes) all += (all.empty() ? "" : "; ") + n;
+            lines.push_back(path_ + ": material '" + name + "': " + all);
+        }
+        material_warnings_.push_back(lines);
+        return m;
+    }
+
+    // --- accessors ------------------------------------------------------------------------
+
+    // The bytes of accessor `index`, checked against its view and buffer; `comps` components.
+    struct View {
+        const unsigned char* data;
+        size_t stride, count, elem;
+        int component_type;
+        bool normalized;
+    };
+
+    View accessor(int index, int type, const char* what, const std::string& where) {
+        if (index < 0 || static_cast<size_t>(index) >= model_.accessors.size())
+            fail(where + ": " + what + " accessor " + std::to_string(index) + " does not exist");
+        const tinygltf::Accessor& a = model_.accessors[static_cast<size_t>(index)];
+        const std::string ac = where + ": " + what + " accessor " + std::to_string(index);
+        if (a.type != type) fail(ac + " has the wrong type");
+        if (a.sparse.isSparse) fail(ac + " is sparse, which is not supported");
+        if (a.bufferView < 0 || static_cast<size_t>(a.bufferView) >= model_.bufferViews.size())
+            fail(ac + " has no valid bufferView");
+        const tinygltf::BufferView& bv = model_.bufferViews[static_cast<size_t>(a.bufferView)];
+        if (bv.buffer < 0 || static_cast<size_t>(bv.buffer) >= model_.buffers.size())
+            fail(ac + ": its bufferView names no existing buffer");
+        const auto& buf = model_.buffers[static_cast<size_t>(bv.buffer)].data;
+        const int csize = tinygltf::GetComponentSizeInBytes(static_cast<uint32_t>(a.componentType));
+        const int ncomp = tinygltf::GetNumComponentsInType(static_cast<uint32_t>(a.type));
+        if (csize <= 0 || ncomp <= 0) fail(ac + " has an unknown component type");
+        const size_t elem = static_cast<size_t>(csize) * static_cast<size_t>(ncomp);
+        const size_t stride = bv.byteStride > 0 ? bv.byteStride : elem;
+        const size_t count = a.count;
+        const uint64_t begin = static_cast<uint64_t>(bv.byteOffset) + a.byteOffset;
+        const uint64_t need = count == 0 ? 0 : static_cast<uint64_t>(stride) * (count - 1) + elem;
+        if (a.byteOffset + need > bv.byteLength || begin + need > buf.size() || bv.byteOffset + bv.byteLength > buf.size())
+            fail(ac + " reaches past the end of its buffer (" + std::to_string(count) + " elements)");
+        return {buf.data() + begin, stride, count, elem, a.componentType, a.normalized};
+    }
+
+    float component(const View& v, size_t i, int k) const {
+        const unsigned char* p = v.data + v.stride * i;
+        switch (v.component_type) {
+            case TINYGLTF_COMPONENT_TYPE_FLOAT: { float f; std::memcpy(&f, p + 4 * k, 4); return f; }
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return p[k] / 255.0f;
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { uint16_t s; std::memcpy(&s, p + 2 * k, 2); return s / 65535.0f; }
+            default: return 0;
+        }
+    }
+
+    void visit(int node, const Mat4& parent, int depth) {
+        if (node < 0 || static_cast<size_t>(node) >= model_.nodes.size()) fail("node " + std::to_string(node) + " does not exist");
+        if (depth > 256) fail("the node hierarchy is deeper than 256 levels (a cycle?)");
+        const tinygltf::Node& n = model_.nodes[static_cast<size_t>(node)];
+        const Mat4 m = mul(parent, local_matrix(n));
+        if (n.mesh >= 0) {
+            if (static_cast<size_t>(n.mesh) >= model_.meshes.size()) fail("node " + std::to_string(node) + ": mesh " + std::to_string(n.mesh) + " does not exist");
+            add_mesh(model_.meshes[static_cast<size_t>(n.mesh)], n.mesh, m);
+        }
+        if (n.camera >= 0 && !out_.camera) camera(n.camera, m);
+        auto lit = n.extensions.find("KHR_lights_punctual");
+        if (lit != n.extensions.end() && lit->second.Has("light")) {
+            int li = lit->second.Get("light").GetNumberAsInt();
+            if (li < 0 || static_cast<size_t>(li) >= model_.lights.size()) fail("node " + std::to_string(node) + ": light " + std::to_string(li) + " does not exist");
+            light(model_.lights[static_cast<size_t>(li)], m);
+        }
+        for (int c : n.children) visit(c, m, depth + 1);
+    }
+
+    void add_mesh(const tinygltf::Mesh& mesh, int mesh_index, const Mat4& m) {
+        const Mat4 nm = normal_matrix(m);
+        const bool flip = det3(m) < 0;
+        std::map<std::tuple<int, int, int>, uint32_t> placed;
+        for (size_t pi = 0; pi < mesh.primitives.size(); ++pi) {
+            const tinygltf::Primitive& p = mesh.primitives[pi];
+            const std::string where = "mesh " + std::to_string(mesh_index) + " primitive " + std::to_string(pi);
+            if (p.mode != TINYGLTF_MODE_TRIANGLES && p.mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+                p.mode != TINYGLTF_MODE_TRIANGLE_FAN && p.mode != -1)
+                fail(where + ": mode " + std::to_string(p.mode) + " (points or lines) is not supported; only triangles are");
+            for (const auto& e : p.extensions)
+                fail(where + ": uses the extension " + e.first + ", which is not supported");
+            auto pos_it = p.attributes.find("POSITION");
+            if (pos_it == p.attributes.end()) fail(where + ": has no POSITION");
+            View pv = accessor(pos_it->second, TINYGLTF_TYPE_VEC3, "POSITION", where);
+            if (pv.component_type != TINYGLTF_COMPONENT_TYPE_FLOAT) fail(where + ": POSITION must be float");
+            std::optional<View> nv, tv;
+            if (auto it = p.attributes.find("NORMAL"); it != p.attributes.end()) {
+                nv = accessor(it->second, TINYGLTF_TYPE_VEC3, "NORMAL", where);
+                if (nv->count != pv.count || nv->component_type != TINYGLTF_COMPONENT_TYPE_FLOAT)
+                    fail(where + ": NORMAL must be float and as long as POSITION");
+            }
+            if (auto it = p.attributes.find("TEXCOORD_0"); it != p.attributes.end()) {
+                tv = accessor(it->second, TINYGLTF_TYPE_VEC2, "TEXCOORD_0", where);
+                if (tv->count != pv.count) fail(where + ": TEXCOORD_0 must be as long as POSITION");
+            }
+            if (p.material >= static_cast<int>(model_.materials.size()))
+                fail(where + ": material " + std::to_string(p.material) + " does not exist");
+            int material = use_materials_ ? p.material : -1;
+            if (material >= static_cast<int>(out_.materials.size())) fail(where + ": material " + std::to_string(material) + " does not exist");
+            if (material < 0) {
+                if (default_material_ < 0) {
+                    MaterialDesc d;
+                    d.name = "default";
+                    default_material_ = static_cast<int>(out_.materials.size());
+                    out_.materials.push_back(d);
+                    material_used_.push_back(false);
+                    material_warnings_.emplace_back();
+                }
+                material = default_material_;
+            }
+            material_used_[static_cast<size_t>(material)] = true;
+            // Primitives of one mesh often share their vertex accessors: place those once.
+            const auto key = std::make_tuple(pos_it->second, nv ? p.attributes.at("NORMAL") : -1,
+                                             tv ? p.attributes.at("TEXCOORD_0") : -1);
+            auto [shared, fresh] = placed.try_emplace(key, static_cast<uint32_t>(out_.mesh.positions.size()));
+            const uint32_t base = shared->second;
+            if (fresh) add_vertices(pv, nv, tv, m, nm, where);
+            add_triangles(p, pv.count, base, flip, material, where);
+        }
+    }
+
+    void add_vertices(const View& pv, const std::optional<View>& nv, const std::optional<View>& tv, const Mat4& m,
+                      const Mat4& nm, const std::string& where) {
+        MeshData& out = out_.mesh;
+        {
+            const uint32_t base = static_cast<uint32_t>(out.positions.size());
+            const bool any_normals_before = !out.normals.empty() || base == 0;
+            for (size_t i = 0; i < pv.count; ++i) {
+                Vec3 v{component(pv, i, 0), component(pv, i, 1), component(pv, i, 2)};
+                if (!is_finite(v)) fail(where + ": POSITION " + std::to_string(i) + " is not finite");
+                out.positions.push_back(apply_point(m, v));
+            }
+            // Normals: this primitive's, or (if it has none while others do) zero (= flat).
+            if (nv) {
+                if (!any_normals_before) out.normals.resize(base, Vec3(0));
+                for (size_t i = 0; i < pv.count; ++i) {
+                    Vec3 n{component(*nv, i, 0), component(*nv, i, 1), component(*nv, i, 2)};
+                    if (!is_finite(n)) fail(where + ": NORMAL " + std::to_string(i) + " is not finite");
+                    Vec3 w = apply_vector(nm, n);
+                    float l = length(w);
+                    out.normals.push_back(l > 0 ? w / l : Vec3(0));
+                }
+            } else if (!out.normals.empty()) {
+                out.normals.resize(out.positions.size(), Vec3(0));
+            }
+            if (tv) {
+                if (out.uvs.size() < 2 * base) out.uvs.resize(2 * base, 0.0f);
+                for (size_t i = 0; i < pv.count; ++i) {
+                    float u = component(*tv, i, 0), v = component(*tv, i, 1);
+                    if (!std::isfinite(u) || !std::isfinite(v)) fail(where + ": TEXCOORD_0 " + std::to_string(i) + " is not finite");
+                    out.uvs.push_back(u);
+                    out.uvs.push_back(v);
+                }
+            } else if (!out.uvs.empty()) {
+                out.uvs.resize(2 * out.positions.size(), 0.0f);
+            }
+        }
+    }
+
+    void add_triangles(const tinygltf::Primitive& p, size_t vertex_count, uint32_t base, bool flip, int material,
+                       const std::string& where) {
+        MeshData& out = out_.mesh;
+        const View pv{nullptr, 0, vertex_count, 0, 0, false};
+        {
+            // Indices (or 0..n-1), as a triangle list.
+            std::vector<uint32_t> idx;
+            if (p.indices >= 0) {
+                View iv = accessor(p.indices, TINYGLTF_TYPE_SCALAR, "indices", where);
+                idx.reserve(iv.count);
+                for (size_t i = 0; i < iv.count; ++i) {
+                    const unsigned char* q = iv.data + iv.stride * i;
+                    uint32_t k;
+                    switch (iv.component_type) {
+                        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: k = q[0]; break;
+                        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { uint16_t s; std::memcpy(&s, q, 2); k = s; break; }
+                        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: std::memcpy(&k, q, 4); break;
+                        default: fail(where + ": indices must be unsigned integers");
+                    }
+                    if (k >= pv.count) fail(where + ": index " + std::to_string(k) + " is out of range (" + std::to_string(pv.count) + " vertices)");
+                    idx.push_back(k);
+                }
+            } else {
+                for (size_t i = 0; i < pv.count; ++i) idx.push_back(static_cast<uint32_t>(i));
+            }
+            std::vector<uint32_t> tris;
+            if (p.mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+                for (size_t i = 0; i + 2 < idx.size(); ++i)
+                    if (i % 2 == 0) tris.insert(tris.end(), {idx[i], idx[i + 1], idx[i + 2]});
+                    else tris.insert(tris.end(), {idx[i + 1], idx[i], idx[i + 2]});
+            } else if (p.mode == TINYGLTF_MODE_TRIANGLE_FAN) {
+                for (size_t i = 1; i + 1 < idx.size(); ++i) tris.insert(tris.end(), {idx[0], idx[i], idx[i + 1]});
+            } else {
+                if (idx.size() % 3 != 0) fail(where + ": the index count " + std::to_string(idx.size()) + " is not a multiple of 3");
+                tris = std::move(idx);
+            }
+            for (size_t t = 0; t + 2 < tris.size(); t += 3) {
+                uint32_t a = base + tris[t], b = base + tris[t + (flip ? 2 : 1)], c = base + tris[t + (flip ? 1 : 2)];
+                Vec3 e = cross(out.positions[b] - out.positions[a], out.positions[c] - out.positions[a]);
+                if (!(length(e) > 0)) continue;  // degenerate: no area, no light
+                out.indices.insert(out.indices.end(), {a, b, c});
+                out.tri_material.push_back(material);
+            }
+        }
+    }
+
+    void camera(int index, const Mat4& m) {
+        if (static_cast<size_t>(index) >= model_.cameras.size()) fail("camera " + std::to_string(index) + " does not exist");
+        const tinygltf::Camera& c = model_.cameras[static_cast<size_t>(index)];
+        CameraDesc cam;
+        cam.position = apply_point(m, Vec3(0));
+        Vec3 fwd = apply_vector(m, Vec3(0, 0, -1)), up = apply_vector(m, Vec3(0, 1, 0));
+        if (!(length(fwd) > 0) || !(length(up) > 0)) return;
+        cam.look_at = cam.position + normalize(fwd);
+        cam.up = normalize(up);
+        if (c.type == "perspective") {
+            double yfov = c.perspective.yfov * 180.0 / 3.14159265358979;
+            if (yfov > 0 && yfov < 180) cam.vfov_deg = static_cast<float>(yfov);
+            if (c.perspective.aspectRatio > 0) {
+                cam.height = 256;
+                cam.width = std::max(1, static_cast<int>(std::lround(256 * c.perspective.aspectRatio)));
+            }
+        } else {
+            warn("camera " + std::to_string(index) + " is orthographic: drawn as a 40 degree perspective camera");
+        }
+        out_.camera = cam;
+    }
+
+    void light(const tinygltf::Light& l, const Mat4& m) {
+        Vec3 color{1, 1, 1};
+        if (l.color.size() == 3) color = {static_cast<float>(l.color[0]), static_cast<float>(l.color[1]), static_cast<float>(l.color[2])};
+        PunctualLight p;
+        p.name = l.name;
+        p.type = l.type;
+        p.color = color;
+        p.intensity = l.intensity;
+        p.range = l.range;
+        p.inner_cone = l.spot.innerConeAngle;
+        p.outer_cone = l.spot.outerConeAngle;
+        p.position = apply_point(m, Vec3(0));
+        p.direction = apply_vector(m, Vec3(0, 0, -1));
+        std::string warning;
+        if (std::optional<LightDesc> d = map_punctual_light(p, warning)) out_.lights.push_back(*d);
+        if (!warning.empty()) warn(warning);
+    }
+
+    std::string path_;
+    bool use_materials_;
+    tinygltf::Model model_;
+    ImportedFile out_;
+    std::vector<bool> material_used_;
+    std::vector<std::vector<std::string>> material_warnings_;
+    int default_material_ = -1;
+};
+
+}  // namespace
+
+ImportedFile read_gltf(const std::string& path, bool read_materials) { return GltfReader(path, read_materials).read(); }
+
+}  // namespace sl

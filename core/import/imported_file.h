@@ -1,0 +1,35 @@
+#pragma once
+// What a mesh file brings into a scene before it is placed: triangles in the file's own space
+// (node transforms applied), its materials, textures (not yet decoded), lights and camera.
+// core/import/resolve_imports.h places it and merges it into the SceneDesc.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "config/scene_desc.h"
+#include "core/import/mesh_data.h"
+
+namespace sl {
+
+struct ImportedTexture {
+    TextureDesc desc;                  // file, wrap modes, sRGB; image not decoded yet
+    std::vector<unsigned char> bytes;  // encoded image inside the file (glTF), else empty
+    std::string format;                // file extension naming the encoding ("png", "jpg")
+};
+
+struct ImportedFile {
+    MeshData mesh;  // tri_material: index into materials
+    std::vector<MaterialDesc> materials;  // albedo/emission_texture: index into textures
+    std::vector<ImportedTexture> textures;
+    std::vector<LightDesc> lights;
+    std::optional<CameraDesc> camera;  // the first camera of the default scene (glTF)
+    std::vector<std::string> files;    // every file read (the mesh, .mtl, .bin, images)
+    std::vector<std::string> warnings;  // one line each, without the "warning: " prefix
+};
+
+// Both throw InputError naming the file (and line or element) for anything malformed. Without
+// read_materials every triangle gets one default material (the scene names its own).
+ImportedFile read_obj_mtl(const std::string& path, bool read_materials);
+ImportedFile read_gltf(const std::string& path, bool read_materials);
+
+}  // namespace sl

@@ -1,0 +1,53 @@
+#include "core/import/light_mapping.h"
+
+#include <cmath>
+
+namespace sl {
+
+namespace {
+std::string label(const PunctualLight& l) {
+    return "light '" + (l.name.empty() ? l.type : l.name) + "'";
+}
+}  // namespace
+
+std::optional<LightDesc> map_directional_light(const PunctualLight& l, std::string& warning) {
+    warning = label(l) + ": directional lights are not imported yet (left out)";
+    return std::nullopt;
+}
+
+std::optional<LightDesc> map_punctual_light(const PunctualLight& l, std::string& warning) {
+    warning.clear();
+    if (l.type == "directional") return map_directional_light(l, warning);
+    if (!(l.intensity >= 0) || !std::isfinite(l.intensity) || !is_finite(l.color) || !is_finite(l.position))
+        { warning = label(l) + ": intensity, colour or position not finite (left out)"; return std::nullopt; }
+    const Vec3 intensity = vmax(l.color, Vec3(0)) * static_cast<float>(l.intensity);  // W/sr
+    LightDesc d;
+    d.position = l.position;
+    if (l.type == "point") {
+        d.type = LightType::Point;
+        d.power = intensity * static_cast<float>(4 * 3.14159265358979323846);
+    } else if (l.type == "spot") {
+        Vec3 dir = l.direction;
+        if (!(length(dir) > 0)) { warning = label(l) + ": no direction (left out)"; return std::nullopt; }
+        d.type = LightType::Spot;
+        d.direction = normalize(dir);
+        double outer = std::clamp(l.outer_cone, 1e-3, 3.14159265358979 / 2);
+        double inner = std::clamp(l.inner_cone, 0.0, outer);
+        double cone = 0.5 * (inner + outer);
+        d.cone_deg = static_cast<float>(cone * 180 / 3.14159265358979323846);
+        // The same intensity inside a hard cone: power = I 2 pi (1 - cos cone).
+        double half = 0.5 * cone;
+        d.power = intensity * static_cast<float>(2 * 3.14159265358979323846 * 2 * std::sin(half) * std::sin(half));
+        if (outer - inner > 1e-3)
+            warning = label(l) + ": the falloff from the inner (" + std::to_string(inner * 180 / 3.14159265358979).substr(0, 5) +
+                      " deg) to the outer cone (" + std::to_string(outer * 180 / 3.14159265358979).substr(0, 5) +
+                      " deg) is drawn as a hard cone of " + std::to_string(d.cone_deg).substr(0, 5) + " deg";
+    } else {
+        warning = label(l) + ": unknown type '" + l.type + "' (left out)";
+        return std::nullopt;
+    }
+    if (l.range > 0) warning += std::string(warning.empty() ? label(l) + ": " : "; ") + "range is ignored (light reaches everywhere)";
+    return d;
+}
+
+}  // namespace sl

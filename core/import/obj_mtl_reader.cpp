@@ -1,0 +1,413 @@
+// OBJ with its MTL materials, read strictly: every number must be a whole finite number token
+// (tinyobjloader reads "nan", "abc" or "0x10" as 0 and wraps huge indices), and every error
+// names the file and line.
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <string_view>
+#include <unordered_map>
+
+#include "core/errors.h"
+#include "core/import/imported_file.h"
+
+namespace sl {
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr uintmax_t kMaxTextBytes = uintmax_t(1) << 30;
+
+std::string read_text(const std::string& path, const std::string& what) {
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec)) throw InputError(path + ": " + what + " not found or not a regular file");
+    uintmax_t size = fs::file_size(path, ec);
+    if (ec) throw InputError(path + ": cannot read the " + what);
+    if (size > kMaxTextBytes) throw InputError(path + ": the " + what + " is larger than 1024 MiB");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(path + ": cannot open the " + what);
+    std::string text(static_cast<size_t>(size), '\0');
+    in.read(text.data(), static_cast<std::streamsize>(size));
+    if (static_cast<uintmax_t>(in.gcount()) != size) throw InputError(path + ": cannot read the " + what);
+    return text;
+}
+
+// Splits a line into whitespace-separated tokens (views into the line).
+std::vector<std::string_view> tokens_of(std::string_view line) {
+    std::vector<std::string_view> t;
+    size_t i = 0;
+    while (i < line.size()) {
+        while (i < line.size() && (line[i] == ' ' || line[i] == '\t' || line[i] == '\r')) ++i;
+        size_t j = i;
+        while (j < line.size() && line[j] != ' ' && line[j] != '\t' && line[j] != '\r') ++j;
+        if (j > i) t.push_back(line.substr(i, j - i));
+        i = j;
+    }
+    return t;
+}
+
+// Everything after the keyword, trimmed: a file or material name may hold spaces.
+std::string rest_of(std::string_view line, std::string_view keyword) {
+    size_t i = line.find(keyword) + keyword.size();
+    while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
+    size_t j = line.size();
+    while (j > i && (line[j - 1] == ' ' || line[j - 1] == '\t' || line[j - 1] == '\r')) --j;
+    return std::string(line.substr(i, j - i));
+}
+
+struct LineReader {
+    const std::string& file;
+    size_t line_no = 0;
+
+    [[noreturn]] void fail(const std::string& why) const {
+        throw InputError(file + ":" + std::to_string(line_no) + ": " + why);
+    }
+
+    float number(std::string_view tok) const {
+        float v = 0;
+        const char* b = tok.data();
+        const char* e = b + tok.size();
+        if (!tok.empty() && *b == '+') ++b;
+        auto r = std::from_chars(b, e, v, std::chars_format::general);
+        if (r.ec == std::errc::result_out_of_range) fail("number '" + std::string(tok) + "' is out of range");
+        if (r.ec != std::errc() || r.ptr != e) fail("'" + std::string(tok) + "' is not a number");
+        if (!std::isfinite(v)) fail("number '" + std::string(tok) + "' is not finite");
+        return v;
+    }
+
+    Vec3 triple(const std::vector<std::string_view>& t, size_t need) const {
+        if (t.size() < 1 + need) fail("'" + std::string(t[0]) + "' needs " + std::to_string(need) + " numbers");
+        Vec3 v;
+        float c[3] = {0, 0, 0};
+        for (size_t k = 0; k < need && k < 3; ++k) c[k] = number(t[1 + k]);
+        for (size_t k = 1 + need; k < t.size(); ++k) number(t[k]);  // extra values must be numbers too
+        v = {c[0], c[1], c[2]};
+        return v;
+    }
+
+    // An OBJ index (1-based, or negative: relative to the end) into a list of `count` items.
+    int64_t index(std::string_view tok, size_t count, const char* what) const {
+        int64_t i = 0;
+        auto r = std::from_chars(tok.data(), tok.data() + tok.size(), i);
+        if (r.ec != std::errc() || r.ptr != tok.data() + tok.size())
+            fail(std::string(what) + " index '" + std::string(tok) + "' is not an integer");
+        int64_t resolved = i < 0 ? static_cast<int64_t>(count) + i : i - 1;
+        if (i == 0 || resolved < 0 || resolved >= static_cast<int64_t>(count))
+            fail(std::string(what) + " index " + std::string(tok) + " is out of range (" + std::to_string(count) +
+                 " defined so far)");
+        return resolved;
+    }
+};
+
+struct MtlResult {
+    std::map<std::string, int> index;
+    std::vector<MaterialDesc> materials;
+};
+
+// A texture statement's file: the last token (options such as -s or -bm come before it).
+std::string texture_path(const LineReader& lr, const std::vector<std::string_view>& t, const fs::path& dir,
+                         std::string& note) {
+    if (t.size() < 2) lr.fail("'" + std::string(t[0]) + "' names no file");
+    if (t.size() > 2) note = "options of " + std::string(t[0]) + " are ignored (the texture is used as is)";
+    fs::path p(std::string(t.back()));
+    if (p.is_relative()) p = dir / p;
+    p = p.lexically_normal();
+    std::error_code ec;
+    if (!fs::is_regular_file(p, ec))
+        lr.fail(std::string(t[0]) + " names a missing texture: " + p.string());
+    return p.string();
+}
+
+int add_texture(ImportedFile& out, const std::string& path, bool srgb) {
+    for (size_t i = 0; i < out.textures.size(); ++i)
+        if (out.textures[i].desc.file == path && out.textures[i].desc.srgb == srgb) return static_cast<int>(i);
+    out.files.push_back(path);
+    ImportedTexture t;
+    t.desc.file = path;
+    t.desc.srgb = srgb;
+    out.textures.push_back(std::move(t));
+    return static_cast<int>(out.textures.size() - 1);
+}
+
+void read_mtl(const std::string& path, ImportedFile& out, MtlResult& mtl) {
+    const std::string text = read_text(path, "material library (.mtl)");
+    out.files.push_back(path);
+    const fs::path dir = fs::path(path).parent_path();
+    LineReader lr{path};
+    MaterialDesc* cur = nullptr;
+    struct Extra { Vec3 ks{0}; int illum = -1; float d = 1; bool ke_set = false; };
+    std::vector<Extra> extra;
+    // What each material loses, gathered into one warning line per material at the end.
+    std::vector<std::vector<std::string>> notes;
+    size_t cur_index = 0;
+    auto warn_once = [&](const std::string&, const std::string& why) {
+        if (!cur) return;
+        auto& n = notes[cur_index];
+        if (std::find(n.begin(), n.end(), why) == n.end()) n.push_back(why);
+    };
+    size_t pos = 0;
+    while (pos < text.size()) {
+        size_t end = text.find('\n', pos);
+        if (end == std::string::npos) end = text.size();
+        std::string_view line(text.data() + pos, end - pos);
+        pos = end + 1;
+        ++lr.line_no;
+        auto t = tokens_of(line);
+        if (t.empty() || t[0][0] == '#') continue;
+        const std::string_view k = t[0];
+        if (k == "newmtl") {
+            std::string name = rest_of(line, "newmtl");
+            if (name.empty()) lr.fail("newmtl names no material");
+            MaterialDesc m;
+            m.name = name;
+            mtl.index[name] = static_cast<int>(mtl.materials.size());
+            mtl.materials.push_back(m);
+            extra.emplace_back();
+            notes.emplace_back();
+            cur = &mtl.materials.back();
+            cur_index = mtl.materials.size() - 1;
+            continue;
+        }
+        if (!cur) lr.fail("'" + std::string(k) + "' before any newmtl");
+        Extra& x = extra.back();
+        if (k == "Kd") {
+            cur->albedo = lr.triple(t, 3);
+            if (t.size() == 2) cur->albedo = Vec3(cur->albedo.x);
+        } else if (k == "Ke") {
+            cur->emission = lr.triple(t, t.size() == 2 ? 1 : 3);
+            if (t.size() == 2) cur->emission = Vec3(cur->emission.x);
+            x.ke_set = true;
+        } else if (k == "Ks") {
+            x.ks = lr.triple(t, t.size() == 2 ? 1 : 3);
+        } else if (k == "Ni") {
+            cur->ior = lr.number(t.size() > 1 ? t[1] : "");
+            if (!(cur->ior > 0)) lr.fail("Ni must be > 0");
+        } else if (k == "illum") {
+            x.illum = static_cast<int>(lr.number(t.size() > 1 ? t[1] : ""));
+        } else if (k == "d") {
+            x.d = lr.number(t.back());
+        } else if (k == "Tr") {
+            x.d = 1 - lr.number(t.back());
+        } else if (k == "map_Kd" || k == "map_Ke") {
+            std::string note;
+            int tex = add_texture(out, texture_path(lr, t, dir, note), true);
+            (k == "map_Kd" ? cur->albedo_texture : cur->emission_texture) = tex;
+            if (!note.empty()) warn_once(note, note);
+        } else if (k == "map_Bump" || k == "bump" || k == "map_bump" || k == "norm" || k == "disp") {
+            warn_once("bump", "bump and normal maps are ignored");
+        } else if (k == "map_d") {
+            warn_once("alpha", "alpha textures are ignored (the surface is opaque)");
+        } else if (k == "map_Ks" || k == "map_Ns" || k == "map_Ka" || k == "refl") {
+            warn_once(std::string(k), std::string(k) + " is ignored");
+        }
+        // Ka, Ns, Tf, sharpness and other statements shape nothing this renderer draws.
+    }
+    for (size_t i = 0; i < mtl.materials.size(); ++i) {
+        MaterialDesc& m = mtl.materials[i];
+        cur = &m;
+        cur_index = i;
+        const Extra& x = extra[i];
+        if (m.emission_texture >= 0 && !x.ke_set) m.emission = Vec3(1);
+        if (x.illum == 3 || x.illum == 5) {
+            m.type = MaterialType::Mirror;
+            m.reflectance = is_black(x.ks) ? Vec3(1) : x.ks;
+        } else if (x.illum == 4 || x.illum == 6 || x.illum == 7 || x.illum == 9) {
+            m.type = MaterialType::Dielectric;
+            if (m.ior <= 1) m.ior = 1.5f, warn_once("ior", "Ni missing or <= 1 for glass: 1.5 is used");
+        } else if (x.illum == 8) {
+            warn_once("illum", "illum 8 (reflection without ray tracing) is drawn diffuse");
+        }
+        if (m.type != MaterialType::Diffuse && (m.albedo_texture >= 0 || m.emits()))
+            warn_once("specular", "a mirror or glass material keeps no texture or emission");
+        if (m.type != MaterialType::Diffuse) {
+            m.albedo_texture = -1;
+            m.emission = Vec3(0);
+            m.emission_texture = -1;
+        }
+        if (m.type == MaterialType::Diffuse && max_component(x.ks) > 0.05f)
+            warn_once("ks", "the specular colour Ks is ignored (the surface is diffuse)");
+        if (x.d < 1) warn_once("alpha", "transparency d/Tr is ignored (the surface is opaque)");
+        if (max_component(m.albedo) > 1 || m.albedo.x < 0 || m.albedo.y < 0 || m.albedo.z < 0) {
+            warn_once("kd", "Kd outside [0, 1] is clamped");
+            m.albedo = vmin(vmax(m.albedo, Vec3(0)), Vec3(1));
+        }
+        if (m.emission.x < 0 || m.emission.y < 0 || m.emission.z < 0) lr.fail("Ke of '" + m.name + "' is negative");
+        if (max_component(m.reflectance) > 1) m.reflectance = vmin(m.reflectance, Vec3(1));
+    }
+    for (size_t i = 0; i < notes.size(); ++i) {
+        if (notes[i].empty()) continue;
+        std::string all;
+        for (const std::string& n : notes[i]) all += (all.empty() ? "" : "; ") + n;
+        out.warnings.push_back(path + ": material '" + mtl.materials[i].name + "': " + all);
+    }
+}
+
+struct CornerKey {
+    int64_t v, t, n;
+    bool operator==(const CornerKey& o) const { return v == o.v && t == o.t && n == o.n; }
+};
+struct CornerHash {
+    size_t operator()(const CornerKey& k) const {
+        return std::hash<int64_t>()(k.v * 73856093LL ^ k.t * 19349663LL ^ k.n * 83492791LL);
+    }
+};
+
+}  // namespace
+
+ImportedFile read_obj_mtl(const std::string& path, bool read_materials) {
+    ImportedFile out;
+    const std::string text = read_text(path, "mesh file");
+    if (text.empty()) throw InputError(path + ": the mesh file is empty");
+    out.files.push_back(path);
+    const fs::path dir = fs::path(path).parent_path();
+    LineReader lr{path};
+    std::vector<Vec3> v, vn;
+    std::vector<float> vt;
+    MtlResult mtl;
+    int current = -1;  // material of the faces that follow (-1: the default)
+    std::unordered_map<CornerKey, uint32_t, CornerHash> corners;
+    bool any_normals = false, any_uvs = false;
+    std::set<std::string> warned;
+    // Faces first gather corners; output vertices are made per distinct (v, vt, vn).
+    struct Corner { int64_t v, t, n; };
+    std::vector<Corner> face;
+    std::vector<Corner> all_corners;  // 3 per triangle
+    std::vector<int32_t> tri_material;
+    size_t pos = 0;
+    while (pos < text.size()) {
+        size_t end = text.find('\n', pos);
+        if (end == std::string::npos) end = text.size();
+        std::string_view line(text.data() + pos, end - pos);
+        pos = end + 1;
+        ++lr.line_no;
+        if (line.find('\0') != std::string_view::npos) lr.fail("holds a NUL byte: not an OBJ text file");
+        auto t = tokens_of(line);
+        if (t.empty() || t[0][0] == '#') continue;
+        const std::string_view k = t[0];
+        if (k == "v") {
+            v.push_back(lr.triple(t, 3));
+        } else if (k == "vn") {
+            vn.push_back(lr.triple(t, 3));
+        } else if (k == "vt") {
+            if (t.size() < 2) lr.fail("'vt' needs at least one number");
+            float uu = lr.number(t[1]), vv = t.size() > 2 ? lr.number(t[2]) : 0;
+            for (size_t i = 3; i < t.size(); ++i) lr.number(t[i]);
+            vt.push_back(uu);
+            vt.push_back(1 - vv);  // OBJ's v = 0 is the image's bottom row; ours the top
+        } else if (k == "f") {
+            if (t.size() < 4) lr.fail("a face needs at least 3 corners");
+            face.clear();
+            for (size_t i = 1; i < t.size(); ++i) {
+                std::string_view c = t[i];
+                size_t s1 = c.find('/');
+                std::string_view a = c.substr(0, s1), b, n;
+                if (s1 != std::string_view::npos) {
+                    std::string_view r = c.substr(s1 + 1);
+                    size_t s2 = r.find('/');
+                    b = r.substr(0, s2);
+                    if (s2 != std::string_view::npos) n = r.substr(s2 + 1);
+                }
+                Corner cc{lr.index(a, v.size(), "vertex"), -1, -1};
+                if (!b.empty()) cc.t = lr.index(b, vt.size() / 2, "texture coordinate");
+                if (!n.empty()) cc.n = lr.index(n, vn.size(), "normal");
+                face.push_back(cc);
+            }
+            for (size_t i = 1; i + 1 < face.size(); ++i) {  // a fan over the polygon
+                all_corners.insert(all_corners.end(), {face[0], face[i], face[i + 1]});
+                tri_material.push_back(current);
+            }
+        } else if (k == "usemtl") {
+            if (!read_materials) continue;
+            std::string name = rest_of(line, "usemtl");
+            auto it = mtl.index.find(name);
+            if (it == mtl.index.end()) {
+                if (warned.insert("usemtl " + name).second)
+                    out.warnings.push_back(path + ":" + std::to_string(lr.line_no) + ": usemtl '" + name +
+                                           "' is not in any material library: the default diffuse material is used");
+                current = -1;
+            } else {
+                current = it->second;
+            }
+        } else if (k == "mtllib") {
+            if (!read_materials) continue;
+            std::string name = rest_of(line, "mtllib");
+            if (name.empty()) lr.fail("mtllib names no file");
+            fs::path p(name);
+            if (p.is_relative()) p = dir / p;
+            std::error_code ec;
+            if (!fs::is_regular_file(p, ec))
+                lr.fail("mtllib names a missing material library: " + p.lexically_normal().string());
+            read_mtl(p.lexically_normal().string(), out, mtl);
+        } else if (k == "l" || k == "p") {
+            if (warned.insert("lp").second)
+                out.warnings.push_back(path + ": lines and points (l, p) are ignored");
+        } else if (k == "o" || k == "g" || k == "s" || k == "vp" || k == "cstype" || k == "deg" ||
+                   k == "curv" || k == "surf" || k == "parm" || k == "end" || k == "mg") {
+            continue;
+        } else if (warned.insert("kw " + std::string(k)).second) {
+            out.warnings.push_back(path + ":" + std::to_string(lr.line_no) + ": unknown statement '" +
+                                   std::string(k.substr(0, 40)) + "' is ignored");
+        }
+    }
+    if (all_corners.empty()) throw InputError(path + ": the mesh has no faces");
+    for (const Corner& c : all_corners) {
+        any_normals |= c.n >= 0;
+        any_uvs |= c.t >= 0;
+    }
+    // Materials: the library's, then a default for faces without one.
+    out.materials = mtl.materials;
+    int default_material = -1;
+    MeshData& m = out.mesh;
+    m.positions.reserve(all_corners.size() / 2);
+    for (size_t tri = 0; tri < tri_material.size(); ++tri) {
+        const Corner* c = &all_corners[3 * tri];
+        Vec3 a = v[static_cast<size_t>(c[0].v)], b = v[static_cast<size_t>(c[1].v)], d = v[static_cast<size_t>(c[2].v)];
+        Vec3 fn = cross(b - a, d - a);
+        float area2 = length(fn);
+        if (!(area2 > 0) || !std::isfinite(area2)) continue;  // degenerate: no area, no light
+        bool flat = any_normals && (c[0].n < 0 || c[1].n < 0 || c[2].n < 0);
+        uint32_t idx[3];
+        for (int k = 0; k < 3; ++k) {
+            // A corner of a face without normals gets its own vertex with the face's normal.
+            CornerKey key{c[k].v, c[k].t, flat ? -2 - static_cast<int64_t>(tri) : c[k].n};
+            auto [it, fresh] = corners.try_emplace(key, static_cast<uint32_t>(m.positions.size()));
+            if (fresh) {
+                m.positions.push_back(v[static_cast<size_t>(c[k].v)]);
+                if (any_normals) {
+                    Vec3 n = flat ? fn / area2 : vn[static_cast<size_t>(c[k].n)];
+                    float l = length(n);
+                    m.normals.push_back(l > 0 ? n / l : fn / area2);
+                }
+                if (any_uvs) {
+                    m.uvs.push_back(c[k].t >= 0 ? vt[2 * static_cast<size_t>(c[k].t)] : 0.0f);
+                    m.uvs.push_back(c[k].t >= 0 ? vt[2 * static_cast<size_t>(c[k].t) + 1] : 0.0f);
+                }
+            }
+            idx[k] = it->second;
+        }
+        m.indices.insert(m.indices.end(), {idx[0], idx[1], idx[2]});
+        int mat = tri_material[tri];
+        if (mat < 0) {
+            if (default_material < 0) {
+                MaterialDesc d;
+                d.name = "default";
+                default_material = static_cast<int>(out.materials.size());
+                out.materials.push_back(d);
+            }
+            mat = default_material;
+        }
+        m.tri_material.push_back(mat);
+    }
+    if (m.indices.empty()) throw InputError(path + ": the mesh has no triangles with area");
+    m.positions.shrink_to_fit();
+    m.normals.shrink_to_fit();
+    m.uvs.shrink_to_fit();
+    m.indices.shrink_to_fit();
+    m.tri_material.shrink_to_fit();
+    return out;
+}
+
+}  // namespace sl

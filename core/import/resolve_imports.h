@@ -1,0 +1,30 @@
+#pragma once
+// Reads every mesh and glTF file a scene names and merges what they bring into the scene:
+// triangles (placed by the entry's scale, rotation and translation), materials (unless the
+// entry names one, which then covers the whole file), the textures those materials use
+// (decoded now, and only those), lights, and the list of files read. Prints one `warning:`
+// line per approximation. Throws InputError naming the file for anything malformed, and when
+// the scene then has no light at all.
+#include <optional>
+
+#include "config/scene_desc.h"
+
+namespace sl {
+
+void resolve_imports(SceneDesc& scene);
+
+// A resolved copy (the scene itself when it is resolved already).
+SceneDesc with_imports(const SceneDesc& scene);
+
+// The first camera of the first glTF file the scene imports, placed like its triangles.
+std::optional<CameraDesc> imported_camera(const SceneDesc& scene);
+
+// Geometry held by imported meshes and their textures (bytes), for `info` and the memory plan.
+uint64_t imported_mesh_bytes(const SceneDesc& scene);
+uint64_t texture_bytes(const SceneDesc& scene);
+// Embree's own copy of the vertices and indices and its BVH (measured, see docs/scenes.md).
+uint64_t imported_bvh_bytes(const SceneDesc& scene);
+size_t imported_triangles(const SceneDesc& scene);
+size_t emissive_triangles(const SceneDesc& scene);
+
+}  // namespace sl

@@ -1,0 +1,164 @@
+// Bad model files: one `error:` line naming the file and what is wrong, exit status 2.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "tests/common/temp_dir.h"
+#include "tests/import/model_writers.h"
+#include "tests/pipeline/run_program.h"
+
+namespace sl::test {
+namespace {
+
+void write_text(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
+
+// Runs `slowlight info FILE` and expects one error line naming `name` and saying `what`.
+void expect_rejected(const std::string& file, const std::string& name, const std::string& what) {
+    ProgramResult r = run_program({"info", file});
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    auto lines = r.error_lines();
+    ASSERT_EQ(lines.size(), 1u) << r.err;
+    EXPECT_NE(lines[0].find(name), std::string::npos) << lines[0];
+    EXPECT_NE(lines[0].find(what), std::string::npos) << lines[0];
+}
+
+const char* kQuadObj = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n";
+
+// An OBJ that is lit: its material emits.
+std::string lit_obj(const TempDir& dir, const std::string& body, const std::string& mtl_extra = "") {
+    write_text(dir.file("lit.mtl"), "newmtl lamp\nKd 0 0 0\nKe 1 1 1\n" + mtl_extra);
+    return "mtllib lit.mtl\nusemtl lamp\n" + body;
+}
+
+TEST(ImportErrors, ObjNumbersMustBeFiniteNumbers) {
+    TempDir dir;
+    for (const std::string bad : {"nan", "inf", "abc", "0x10", "-infinity", "1e999"}) {
+        write_text(dir.file("bad.obj"), lit_obj(dir, "v " + bad + " 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 3\n"));
+        expect_rejected(dir.file("bad.obj"), "bad.obj:3", bad);
+    }
+}
+
+TEST(ImportErrors, ObjIndicesMustBeInRange) {
+    TempDir dir;
+    write_text(dir.file("wrap.obj"), lit_obj(dir, std::string(kQuadObj) + "f 1 2 4294967299\n"));
+    expect_rejected(dir.file("wrap.obj"), "wrap.obj:8", "out of range");
+    write_text(dir.file("zero.obj"), lit_obj(dir, std::string(kQuadObj) + "f 0 1 2\n"));
+    expect_rejected(dir.file("zero.obj"), "zero.obj:8", "out of range");
+    write_text(dir.file("neg.obj"), lit_obj(dir, std::string(kQuadObj) + "f -5 1 2\n"));
+    expect_rejected(dir.file("neg.obj"), "neg.obj:8", "out of range");
+}
+
+TEST(ImportErrors, MtlNamingAMissingTextureOrLibrary) {
+    TempDir dir;
+    write_text(dir.file("tex.obj"), lit_obj(dir, kQuadObj, "newmtl wood\nmap_Kd nowhere.png\n"));
+    expect_rejected(dir.file("tex.obj"), "lit.mtl:5", "missing texture");
+    write_text(dir.file("lib.obj"), std::string("mtllib gone.mtl\n") + kQuadObj);
+    expect_rejected(dir.file("lib.obj"), "lib.obj:1", "missing material library");
+}
+
+TEST(ImportErrors, SceneWithoutAnyLight) {
+    TempDir dir;
+    write_text(dir.file("dark.obj"), kQuadObj);
+    expect_rejected(dir.file("dark.obj"), "dark.obj", "no light");
+}
+
+// A valid emissive quad as .gltf + .bin, then broken in one place at a time.
+nlohmann::json valid_gltf(const TempDir& dir) {
+    ModelMesh m;
+    m.quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 0);
+    write_gltf(dir.file("ok.gltf"), m, {{"lamp", Vec3(0), Vec3(1)}}, false);
+    std::ifstream in(dir.file("ok.gltf"));
+    return nlohmann::json::parse(in);
+}
+
+void expect_gltf_rejected(const TempDir& dir, const nlohmann::json& j, const std::string& what) {
+    write_text(dir.file("bad.gltf"), j.dump());
+    std::filesystem::copy_file(dir.file("ok.bin"), dir.file("bad.bin"), std::filesystem::copy_options::overwrite_existing);
+    expect_rejected(dir.file("bad.gltf"), "bad.gltf", what);
+}
+
+TEST(ImportErrors, GltfFaults) {
+    TempDir dir;
+    const nlohmann::json ok = valid_gltf(dir);
+    {
+        ProgramResult r = run_program({"info", dir.file("ok.gltf")});
+        ASSERT_EQ(r.exit_code, 0) << r.err;
+    }
+    auto j = ok;
+    j["buffers"][0]["uri"] = "missing.bin";
+    expect_gltf_rejected(dir, j, "missing.bin");
+    j = ok;
+    j["accessors"][3]["count"] = 600;  // indices past the buffer's end
+    expect_gltf_rejected(dir, j, "past the end");
+    j = ok;
+    j["accessors"][3]["byteOffset"] = 4;  // shifted: out of the view
+    j["accessors"][3]["count"] = 6;
+    expect_gltf_rejected(dir, j, "past the end");
+    j = ok;
+    j["meshes"][0]["primitives"][0]["indices"] = 42;
+    expect_gltf_rejected(dir, j, "indices accessor");
+    j = ok;
+    j["meshes"][0]["primitives"][0]["mode"] = 1;  // lines
+    expect_gltf_rejected(dir, j, "only triangles");
+    j = ok;
+    j["extensionsRequired"] = {"KHR_draco_mesh_compression"};
+    j["extensionsUsed"] = {"KHR_draco_mesh_compression"};
+    expect_gltf_rejected(dir, j, "KHR_draco_mesh_compression");
+    j = ok;
+    j["images"] = {{{"uri", "missing.png"}}};
+    j["textures"] = {{{"source", 0}}};
+    j["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"] = {{"index", 0}};
+    expect_gltf_rejected(dir, j, "missing.png");
+    j = ok;
+    j["materials"][0]["emissiveFactor"] = {0, 0, 0};
+    expect_gltf_rejected(dir, j, "no light");
+    // A scene that names the material for the file reads none of the file's materials, so an
+    // image they would need may be missing.
+    j = ok;
+    j["images"] = {{{"uri", "missing.png"}}};
+    j["textures"] = {{{"source", 0}}};
+    j["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"] = {{"index", 0}};
+    write_text(dir.file("bad.gltf"), j.dump());
+    write_text(dir.file("scene.json"), R"({"camera": {"position": [0.5, 0.5, 2], "look_at": [0.5, 0.5, 0]},
+        "materials": {"w": {"type": "diffuse"}},
+        "shapes": [{"type": "gltf", "file": "bad.gltf", "material": "w"}],
+        "lights": [{"type": "point", "position": [0, 0, 1], "power": [1, 1, 1]}]})");
+    ProgramResult r = run_program({"info", dir.file("scene.json")});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;
+}
+
+TEST(ImportErrors, GltfIndexOutOfRangeAndNonFiniteVertex) {
+    TempDir dir;
+    ModelMesh m;
+    m.quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 0);
+    m.indices[4] = 7;  // only 4 vertices
+    write_gltf(dir.file("idx.glb"), m, {{"lamp", Vec3(0), Vec3(1)}}, true);
+    expect_rejected(dir.file("idx.glb"), "idx.glb", "index 7 is out of range");
+    ModelMesh n;
+    n.quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 0);
+    n.positions[2].x = std::numeric_limits<float>::quiet_NaN();
+    write_gltf(dir.file("nan.glb"), n, {{"lamp", Vec3(0), Vec3(1)}}, true);
+    expect_rejected(dir.file("nan.glb"), "nan.glb", "not finite");
+}
+
+TEST(ImportErrors, ApproximationsWarnOncePerMaterial) {
+    TempDir dir;
+    nlohmann::json j = valid_gltf(dir);
+    j["materials"][0]["alphaMode"] = "BLEND";
+    j["materials"][0]["normalTexture"] = {{"index", 0}};
+    j["textures"] = {{{"source", 0}}};
+    j["images"] = {{{"uri", "unused.png"}}};
+    write_text(dir.file("ok.gltf"), j.dump());
+    ProgramResult r = run_program({"info", dir.file("ok.gltf")});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    size_t first = r.err.find("warning: ");
+    ASSERT_NE(first, std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("warning: ", first + 1), std::string::npos) << r.err;  // one line for the material
+    EXPECT_NE(r.err.find("material 'lamp'"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("alpha BLEND"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("normal map"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace sl::test

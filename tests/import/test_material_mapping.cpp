@@ -1,0 +1,98 @@
+// glTF metallic-roughness and MTL materials as slowlight's three surfaces, and the texture
+// wrap modes.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "core/errors.h"
+#include "core/import/imported_file.h"
+#include "core/texture.h"
+#include "tests/common/temp_dir.h"
+#include "tests/import/model_writers.h"
+
+namespace sl::test {
+namespace {
+
+TEST(MaterialMapping, GltfMetallicRoughnessTransmissionEmission) {
+    TempDir dir;
+    ModelMesh m;
+    for (int i = 0; i < 5; ++i) m.quad({static_cast<float>(i), 0, 0}, {1, 0, 0}, {0, 1, 0}, i);
+    std::vector<ModelMaterial> mats = {{"matte", {0.2f, 0.4f, 0.6f}}, {"chrome", Vec3(0.9f)}, {"brushed", Vec3(0.5f)},
+                                       {"glass", Vec3(1)}, {"lamp", Vec3(0), {2, 4, 8}}};
+    write_gltf(dir.file("m.gltf"), m, mats, false);
+    std::ifstream in(dir.file("m.gltf"));
+    auto j = nlohmann::json::parse(in);
+    j["materials"][1]["pbrMetallicRoughness"]["metallicFactor"] = 1.0;
+    j["materials"][1]["pbrMetallicRoughness"]["roughnessFactor"] = 0.0;
+    j["materials"][2]["pbrMetallicRoughness"]["metallicFactor"] = 1.0;
+    j["materials"][2]["pbrMetallicRoughness"]["roughnessFactor"] = 0.5;
+    j["materials"][3]["extensions"] = {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}},
+                                       {"KHR_materials_ior", {{"ior", 1.33}}}};
+    j["materials"][4]["doubleSided"] = true;
+    j["extensionsUsed"] = {"KHR_materials_emissive_strength", "KHR_materials_transmission", "KHR_materials_ior"};
+    std::ofstream(dir.file("m.gltf")) << j.dump();
+    ImportedFile f = read_gltf(dir.file("m.gltf"), true);
+    ASSERT_EQ(f.materials.size(), 5u);
+    EXPECT_EQ(f.materials[0].type, MaterialType::Diffuse);
+    EXPECT_FLOAT_EQ(f.materials[0].albedo.y, 0.4f);
+    EXPECT_EQ(f.materials[1].type, MaterialType::Mirror);
+    EXPECT_FLOAT_EQ(f.materials[1].reflectance.x, 0.9f);
+    EXPECT_EQ(f.materials[2].type, MaterialType::Diffuse);  // rough metal: approximated, and said so
+    EXPECT_EQ(f.materials[3].type, MaterialType::Dielectric);
+    EXPECT_FLOAT_EQ(f.materials[3].ior, 1.33f);
+    EXPECT_TRUE(f.materials[4].emits());
+    EXPECT_TRUE(f.materials[4].double_sided);
+    EXPECT_FLOAT_EQ(f.materials[4].emission.z, 8.0f);  // factor (0.25, 0.5, 1) x strength 8
+    EXPECT_FLOAT_EQ(f.materials[4].emission.x, 2.0f);
+    bool rough_warned = false;
+    for (const std::string& w : f.warnings) rough_warned |= w.find("material 'brushed': rough metal") != std::string::npos;
+    EXPECT_TRUE(rough_warned);
+    EXPECT_EQ(f.mesh.triangle_count(), 10u);
+    EXPECT_EQ(f.mesh.normals.size(), f.mesh.positions.size());
+    EXPECT_EQ(f.mesh.uvs.size(), 2 * f.mesh.positions.size());
+}
+
+TEST(MaterialMapping, MtlIllumKdKeNi) {
+    TempDir dir;
+    std::ofstream(dir.file("m.mtl")) << "newmtl mirror\nKs 0.9 0.8 0.7\nillum 3\n"
+                                     << "newmtl glass\nNi 1.7\nillum 7\n"
+                                     << "newmtl lamp\nKd 0.1 0.2 0.3\nKe 5 6 7\n";
+    std::ofstream(dir.file("m.obj")) << "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\n"
+                                     << "usemtl mirror\nf 1 2 3\nusemtl glass\nf 1 2 3\nusemtl lamp\nf 1 2 3\n";
+    ImportedFile f = read_obj_mtl(dir.file("m.obj"), true);
+    ASSERT_EQ(f.materials.size(), 3u);
+    EXPECT_EQ(f.materials[0].type, MaterialType::Mirror);
+    EXPECT_FLOAT_EQ(f.materials[0].reflectance.y, 0.8f);
+    EXPECT_EQ(f.materials[1].type, MaterialType::Dielectric);
+    EXPECT_FLOAT_EQ(f.materials[1].ior, 1.7f);
+    EXPECT_EQ(f.materials[2].type, MaterialType::Diffuse);
+    EXPECT_FLOAT_EQ(f.materials[2].albedo.z, 0.3f);
+    EXPECT_FLOAT_EQ(f.materials[2].emission.y, 6.0f);
+    EXPECT_EQ(f.mesh.tri_material, (std::vector<int32_t>{0, 1, 2}));
+    EXPECT_TRUE(f.mesh.normals.empty());  // no vn: flat
+}
+
+TEST(MaterialMapping, WrapModesAndBilinear) {
+    TextureImage t;
+    t.width = 4;
+    t.height = 1;
+    t.rgb = {0, 0, 0, 1, 1, 1, 2, 2, 2, 3, 3, 3};
+    // Texel centres are at u = (i + 0.5) / 4; halfway between texels 1 and 2 is their mean.
+    EXPECT_FLOAT_EQ(t.sample(0.5f, 0.5f).x, 1.5f);
+    EXPECT_FLOAT_EQ(t.sample(0.375f, 0.5f).x, 1.0f);
+    // Past the right edge: repeat blends texel 3 with texel 0, clamp stays on 3, mirrored on 3.
+    const float u = 1.0f;  // halfway between texel 3's centre and the next one
+    t.wrap_s = TextureWrap::Repeat;
+    EXPECT_FLOAT_EQ(t.sample(u, 0.5f).x, 1.5f);
+    t.wrap_s = TextureWrap::Clamp;
+    EXPECT_FLOAT_EQ(t.sample(u, 0.5f).x, 3.0f);
+    t.wrap_s = TextureWrap::MirroredRepeat;
+    EXPECT_FLOAT_EQ(t.sample(u, 0.5f).x, 3.0f);
+    EXPECT_FLOAT_EQ(t.sample(1.375f, 0.5f).x, 2.0f);  // mirrored: texel 5 is texel 2
+    t.wrap_s = TextureWrap::Repeat;
+    EXPECT_FLOAT_EQ(t.sample(1.375f, 0.5f).x, 1.0f);  // repeated: texel 5 is texel 1
+    EXPECT_FLOAT_EQ(t.sample(-0.625f, 0.5f).x, 1.0f);
+}
+
+}  // namespace
+}  // namespace sl::test
