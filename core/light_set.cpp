@@ -7,7 +7,7 @@
 
 namespace sl {
 
-LightSet::LightSet(const SceneDesc& scene) {
+LightSet::LightSet(const SceneDesc& scene, Vec3 bounds_min, Vec3 bounds_max) {
     for (const LightDesc& d : scene.lights) {
         Light l;
         l.desc = d;
@@ -37,6 +37,11 @@ LightSet::LightSet(const SceneDesc& scene) {
             l.power = d.radiance * (kPi * l.area);
             break;
         }
+        case LightType::Sun:
+            l.sun = SunLight(d, bounds_min, bounds_max);
+            l.desc.direction = l.sun.direction();
+            l.power = l.sun.power();
+            break;
         }
         lights_.push_back(l);
         total_power_ += average(l.power);
@@ -83,6 +88,11 @@ EmittedPhoton LightSet::emit(Rng& rng) const {
         e.origin = l.desc.corner + l.desc.edge1 * u1 + l.desc.edge2 * u2;
         e.direction = sample_cosine_hemisphere(l.normal, rng.uniform(), rng.uniform());
         break;
+    case LightType::Sun: {
+        float u3 = rng.uniform(), u4 = rng.uniform();
+        l.sun.emit(u1, u2, u3, u4, e.origin, e.direction, e.start_ns);
+        break;
+    }
     }
     return e;
 }
@@ -92,6 +102,9 @@ bool LightSet::sample_direct(size_t i, Vec3 p, Vec3 n, float u1, float u2, Direc
     Vec3 target;
     switch (l.desc.type) {
     case LightType::Laser: return false;  // a collimated beam is reached by photons only
+    case LightType::Sun:
+        out.start_ns = 0;
+        return l.sun.sample_direct(p, n, u1, u2, out.irradiance, out.to_light, out.distance, out.start_ns);
     case LightType::Point:
     case LightType::Spot: target = l.desc.position; break;
     case LightType::Quad: target = l.desc.corner + l.desc.edge1 * u1 + l.desc.edge2 * u2; break;

@@ -38,9 +38,12 @@ std::string settings_fingerprint(const SceneDesc& s, int sections, Strategy stra
             while (f.read(buf, sizeof buf) || f.gcount() > 0) meshes.bytes(buf, static_cast<size_t>(f.gcount()));
         }
     }
-    for (const LightDesc& l : s.lights)
+    for (const LightDesc& l : s.lights) {
         t << "light " << static_cast<int>(l.type) << ' ' << l.position << ' ' << l.corner << ' ' << l.edge1 << ' ' << l.edge2
-          << ' ' << l.direction << ' ' << l.power << ' ' << l.radiance << ' ' << l.cone_deg << ' ' << l.radius << '\n';
+          << ' ' << l.direction << ' ' << l.power << ' ' << l.radiance << ' ' << l.cone_deg << ' ' << l.radius;
+        if (l.type == LightType::Sun) t << " sun " << l.irradiance << ' ' << l.angle_deg;  // others: as before
+        t << '\n';
+    }
     const MediumDesc& m = s.medium;
     t << "medium " << m.present << ' ' << m.sigma_a << ' ' << m.sigma_s << ' ' << m.g << ' ' << m.has_bounds << ' '
       << m.bounds_min << ' ' << m.bounds_max << '\n';

@@ -128,7 +128,7 @@ struct PixelTracer {
             if (!ctx.lights.sample_direct(i, p, nf, u1, u2, s)) continue;
             ++rays;
             if (ctx.geometry.occluded(origin, s.to_light, 0, s.distance * (1 - 1e-4f))) continue;
-            double t = s.distance / kSpeedOfLight + back_ns;
+            double t = s.start_ns + s.distance / kSpeedOfLight + back_ns;
             Vec3 e = s.irradiance;
             if (medium) e *= medium->transmittance(origin, s.to_light, s.distance);
             deposit(buffer, ctx.timeline, pixel, t, f * e);
