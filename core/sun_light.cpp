@@ -12,20 +12,6 @@ constexpr double kPiD = 3.14159265358979323846;
 constexpr double kMetersPerNs = 0.299792458;
 }  // namespace
 
-LightDesc make_sun_light(Vec3 direction, float angle_deg, Vec3 irradiance) {
-    LightDesc l;
-    l.type = LightType::Sun;
-    l.direction = normalize(direction);
-    l.angle_deg = angle_deg;
-    l.irradiance = irradiance;
-    return l;
-}
-
-Vec3 sun_irradiance_from_radiance(Vec3 radiance, float angle_deg) {
-    const double s = std::sin(0.5 * angle_deg * kPiD / 180.0);
-    return radiance * static_cast<float>(kPiD * s * s);
-}
-
 SunLight::SunLight(const LightDesc& desc, Vec3 lo, Vec3 hi) {
     d_ = normalize(desc.direction);
     make_basis(d_, t_, b_);
