@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/errors.h"
 #include "core/sampling.h"
 
 namespace sl {
@@ -43,6 +44,10 @@ LightSet::LightSet(const SceneDesc& scene, Vec3 bounds_min, Vec3 bounds_max) {
             l.power = l.sun.power();
             break;
         }
+        // A sun's power is its irradiance times the scene's cross-section: it can overflow.
+        if (!is_finite(l.power) || !std::isfinite(total_power_ + average(l.power)))
+            throw InputError(scene.source + ": key 'lights[" + std::to_string(lights_.size()) +
+                             "]': its power (emission times area) is too large for single precision");
         lights_.push_back(l);
         total_power_ += average(l.power);
         cdf_.push_back(total_power_);

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/errors.h"
 #include "core/light_set.h"
 #include "core/sun_light.h"
 #include "render_helpers.h"
@@ -169,6 +170,27 @@ TEST(SunLight, LightsTheFloorPatchThroughAWindowWhenThePlaneWavefrontArrives) {
     EXPECT_NEAR(lit_power / want_power, 1.0, 0.03);  // its size: edge pixels are partly lit
     // The patch's far edge is lit later than its near one: the wavefront is a plane moving along d.
     EXPECT_GT(tl.bucket((dot(Vec3{x1, 0, z1}, d) - h0) / kC), tl.bucket((dot(Vec3{x0, 0, z0}, d) - h0) / kC) + 1);
+}
+
+}  // namespace
+}  // namespace sl
+
+namespace sl {
+namespace {
+
+// A sun's power is its irradiance times the scene's cross-section: a huge scene and a huge
+// irradiance overflow single precision, which must be an input error, not NaN frames.
+TEST(SunLight, PowerTooLargeForSinglePrecisionIsAnInputError) {
+    SceneDesc s;
+    s.source = "huge.json";
+    s.lights.push_back(make_sun_light({0.3f, -1, 0}, 0.53f, Vec3(1e30f)));
+    EXPECT_NO_THROW(LightSet(s, Vec3(-1), Vec3(1)));
+    try {
+        LightSet(s, Vec3(-1e8f), Vec3(1e8f));
+        ADD_FAILURE() << "no error";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("huge.json: key 'lights[0]'"), std::string::npos) << e.what();
+    }
 }
 
 }  // namespace
