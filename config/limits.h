@@ -23,6 +23,8 @@ inline constexpr double kMaxLength = 1e9;
 inline constexpr double kMaxEmission = 1e30;
 // A spot narrower than this is a laser: its 1 - cos(cone) would vanish in float.
 inline constexpr double kMinSpotConeDeg = 0.1;
+// A sun's angular diameter: a wider "sun" is an area light, not a directional one.
+inline constexpr double kMaxSunAngleDeg = 45;
 // Relative tolerance when checking that a pulse width is a whole number of frames.
 inline constexpr double kPulseTolerance = 1e-6;
 

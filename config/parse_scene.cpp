@@ -16,6 +16,7 @@
 #include "config/limits.h"
 #include "config/text_util.h"
 #include "core/errors.h"
+#include "core/sun_light.h"
 
 namespace sl {
 
@@ -292,7 +293,7 @@ private:
 
     LightDesc light(const JsonObject& l) const {
         LightDesc d;
-        d.type = static_cast<LightType>(l.choice("type", {"point", "quad", "spot", "laser"}));
+        d.type = static_cast<LightType>(l.choice("type", {"point", "quad", "spot", "laser", "sun"}));
         switch (d.type) {
             case LightType::Point:
                 l.expect_keys({"type", "position", "power"});
@@ -321,15 +322,38 @@ private:
                 if (l.has("radius")) d.radius = scalar_length(l, "radius", Range::positive());
                 d.power = color(l, "power");
                 break;
+            case LightType::Sun:
+                parse_sun(l, d);
+                break;
         }
         return d;
+    }
+
+    // A sun: where its light goes, its angular diameter and either the irradiance on a plane
+    // facing it (W/m^2) or the radiance of its disc (W sr^-1 m^-2).
+    static void parse_sun(const JsonObject& l, LightDesc& d) {
+        l.expect_keys({"type", "direction", "angle_deg", "irradiance", "radiance"});
+        d.direction = direction(l, "direction");
+        d.angle_deg = number_f(l, "angle_deg", Range::closed(0, limits::kMaxSunAngleDeg), d.angle_deg);
+        const bool e = l.has("irradiance"), r = l.has("radiance");
+        if (e == r) l.fail("irradiance", "a sun needs exactly one of \"irradiance\" (W/m^2) or \"radiance\" (W/sr/m^2)");
+        if (e) {
+            d.irradiance = color(l, "irradiance");
+        } else {
+            if (!(d.angle_deg > 0))
+                l.fail("radiance", "needs \"angle_deg\" > 0 (a sun of no size has no finite radiance); give \"irradiance\"");
+            d.irradiance = sun_irradiance_from_radiance(color(l, "radiance"), d.angle_deg);
+        }
     }
 
     // A scene needs light: at least one light, and not all of them dark.
     void check_lights(const JsonObject& top) const {
         if (scene_.lights.empty()) top.fail("lights", "must contain at least one light");
         for (const LightDesc& l : scene_.lights)
-            if (!is_black(l.type == LightType::Quad ? l.radiance : l.power)) return;
+            if (!is_black(l.type == LightType::Quad  ? l.radiance
+                          : l.type == LightType::Sun ? l.irradiance
+                                                     : l.power))
+                return;
         top.fail("lights", "every light has zero power or radiance; at least one must emit");
     }
 

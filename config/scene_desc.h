@@ -75,17 +75,19 @@ struct ShapeDesc {
     std::shared_ptr<const MeshData> mesh;
 };
 
-enum class LightType { Point, Quad, Spot, Laser };
+enum class LightType { Point, Quad, Spot, Laser, Sun };
 
 struct LightDesc {
     LightType type = LightType::Point;
     Vec3 position;              // point, spot, laser
     Vec3 corner, edge1, edge2;  // quad
-    Vec3 direction{0, -1, 0};   // spot, laser (unit length after validation)
+    Vec3 direction{0, -1, 0};   // spot, laser, sun: where the light goes (unit length after validation)
     Vec3 power;                 // W: point, spot, laser
     Vec3 radiance;              // W sr^-1 m^-2: quad (front side = edge1 x edge2)
     float cone_deg = 30;        // spot: the cone's full opening angle (it reaches cone_deg / 2 from the axis)
     float radius = 0.002f;      // laser beam radius (m)
+    Vec3 irradiance;            // W m^-2 on a plane facing the light: sun
+    float angle_deg = 0.53f;    // sun: angular diameter (core/sun_light.h)
 };
 
 struct MediumDesc {

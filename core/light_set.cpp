@@ -3,11 +3,12 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/errors.h"
 #include "core/sampling.h"
 
 namespace sl {
 
-LightSet::LightSet(const SceneDesc& scene) : emitters_(scene) {
+LightSet::LightSet(const SceneDesc& scene, Vec3 bounds_min, Vec3 bounds_max) : emitters_(scene) {
     for (const LightDesc& d : scene.lights) {
         Light l;
         l.desc = d;
@@ -37,7 +38,16 @@ LightSet::LightSet(const SceneDesc& scene) : emitters_(scene) {
             l.power = d.radiance * (kPi * l.area);
             break;
         }
+        case LightType::Sun:
+            l.sun = SunLight(d, bounds_min, bounds_max);
+            l.desc.direction = l.sun.direction();
+            l.power = l.sun.power();
+            break;
         }
+        // A sun's power is its irradiance times the scene's cross-section: it can overflow.
+        if (!is_finite(l.power) || !std::isfinite(total_power_ + average(l.power)))
+            throw InputError(scene.source + ": key 'lights[" + std::to_string(lights_.size()) +
+                             "]': its power (emission times area) is too large for single precision");
         lights_.push_back(l);
         total_power_ += average(l.power);
         cdf_.push_back(total_power_);
@@ -107,6 +117,11 @@ EmittedPhoton LightSet::emit(Rng& rng) const {
         e.origin = l.desc.corner + l.desc.edge1 * u1 + l.desc.edge2 * u2;
         e.direction = sample_cosine_hemisphere(l.normal, rng.uniform(), rng.uniform());
         break;
+    case LightType::Sun: {
+        float u3 = rng.uniform(), u4 = rng.uniform();
+        l.sun.emit(u1, u2, u3, u4, e.origin, e.direction, e.start_ns);
+        break;
+    }
     }
     return e;
 }
@@ -131,6 +146,9 @@ bool LightSet::sample_direct(size_t i, Vec3 p, Vec3 n, float u1, float u2, Direc
     Vec3 target;
     switch (l.desc.type) {
     case LightType::Laser: return false;  // a collimated beam is reached by photons only
+    case LightType::Sun:
+        out.start_ns = 0;
+        return l.sun.sample_direct(p, n, u1, u2, out.irradiance, out.to_light, out.distance, out.start_ns);
     case LightType::Point:
     case LightType::Spot: target = l.desc.position; break;
     case LightType::Quad: target = l.desc.corner + l.desc.edge1 * u1 + l.desc.edge2 * u2; break;

@@ -6,6 +6,7 @@
 #include "config/scene_desc.h"
 #include "core/emissive_triangles.h"
 #include "core/rng.h"
+#include "core/sun_light.h"
 
 namespace sl {
 
@@ -13,18 +14,22 @@ struct EmittedPhoton {
     Vec3 origin, direction;
     Vec3 flux;             // W carried by this one emitted path (before dividing by the count)
     bool direct_by_photons;  // the light's direct light is gathered, not computed (lasers)
+    double start_ns = 0;     // when the light leaves the origin (a sun's rectangle: slightly < 0)
 };
 
 struct DirectLightSample {
     Vec3 irradiance;  // W/m^2 arriving at the point from this sample, before visibility
     Vec3 to_light;    // unit direction from the point towards the light sample
     float distance = 0;
+    double start_ns = 0;  // when the light left the sample's point (a sun: slightly < 0)
 };
 
 class LightSet {
 public:
-    // `scene` must outlive the set (emissive meshes read its textures).
-    explicit LightSet(const SceneDesc& scene);
+    // `scene` must outlive the set (emissive meshes read its textures). Bounds: the scene's
+    // extent (geometry and medium box), which a sun's light must cover and where its
+    // wavefront starts.
+    explicit LightSet(const SceneDesc& scene, Vec3 bounds_min = Vec3(0), Vec3 bounds_max = Vec3(0));
 
     bool has_emission() const { return total_power_ > 0; }
     float total_power() const { return total_power_; }
@@ -32,7 +37,8 @@ public:
 
     EmittedPhoton emit(Rng& rng) const;
     // One sample of light i's direct irradiance at p (unit normal n facing the viewer); false
-    // when light i cannot reach p this way (back side, outside a spot's cone, a laser).
+    // when light i cannot reach p this way (back side, outside a spot's cone, a laser,
+    // a sun below the horizon).
     bool sample_direct(size_t i, Vec3 p, Vec3 n, float u1, float u2, DirectLightSample& out) const;
 
 private:
@@ -44,6 +50,7 @@ private:
         Vec3 intensity;     // point/spot: W/sr
         Vec3 power;         // RGB power in W
         bool mesh = false;  // the emissive triangles of imported meshes (emitters_)
+        SunLight sun;       // sun
     };
     const Light& pick(float u, float& probability) const;
 

@@ -44,9 +44,12 @@ std::string settings_fingerprint(const SceneDesc& s, int sections, Strategy stra
     for (const std::string& file : s.input_files)  // the scene, imported meshes, libraries, buffers, textures
         read_input_chunks(file, uint64_t(4) << 30, s.source + ": '" + file + "'", "input file",
                           [&](const char* p, size_t n) { meshes.bytes(p, n); });
-    for (const LightDesc& l : s.lights)
+    for (const LightDesc& l : s.lights) {
         t << "light " << static_cast<int>(l.type) << ' ' << l.position << ' ' << l.corner << ' ' << l.edge1 << ' ' << l.edge2
-          << ' ' << l.direction << ' ' << l.power << ' ' << l.radiance << ' ' << l.cone_deg << ' ' << l.radius << '\n';
+          << ' ' << l.direction << ' ' << l.power << ' ' << l.radiance << ' ' << l.cone_deg << ' ' << l.radius;
+        if (l.type == LightType::Sun) t << " sun " << l.irradiance << ' ' << l.angle_deg;  // others: as before
+        t << '\n';
+    }
     const MediumDesc& m = s.medium;
     t << "medium " << m.present << ' ' << m.sigma_a << ' ' << m.sigma_s << ' ' << m.g << ' ' << m.has_bounds << ' '
       << m.bounds_min << ' ' << m.bounds_max << '\n';

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "core/sun_light.h"
+
 namespace sl {
 
 namespace {
@@ -10,9 +12,15 @@ std::string label(const PunctualLight& l) {
 }
 }  // namespace
 
+// A directional light is a sun with no angular size: its intensity is the irradiance (W m^-2)
+// on a plane facing it, and its wavefront enters the scene's bounds at t = 0.
 std::optional<LightDesc> map_directional_light(const PunctualLight& l, std::string& warning) {
-    warning = label(l) + ": directional lights are not imported yet (left out)";
-    return std::nullopt;
+    if (!(l.intensity >= 0) || !std::isfinite(l.intensity) || !is_finite(l.color) || !is_finite(l.direction) ||
+        !(length(l.direction) > 0)) {
+        warning = label(l) + ": intensity, colour or direction not finite (left out)";
+        return std::nullopt;
+    }
+    return make_sun_light(l.direction, 0.0f, vmax(l.color, Vec3(0)) * static_cast<float>(l.intensity));
 }
 
 std::optional<LightDesc> map_punctual_light(const PunctualLight& l, std::string& warning) {

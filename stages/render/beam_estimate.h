@@ -1,8 +1,9 @@
 #pragma once
 // The beam radiance estimate with photon points: every camera segment that crosses the
-// medium collects this pass's volume photons within the volume radius r of it,
+// medium collects this pass's volume photons within the volume radius r(s) of it (the pass's
+// radius, or a pixel footprint at that distance when that is wider: see kFootprintRadii),
 //
-//   L += beta K_r Phi_i p(theta_i) Tr(s_i) / N,   K_r = 1 / (pi r^2),
+//   L += beta K_r Phi_i p(theta_i) Tr(s_i) / N,   K_r = 1 / (pi r(s_i)^2),
 //
 // into the slot of each photon's arrival time (plus the camera leg with camera_tof). Like the
 // surface gather, each pixel is gathered by the thread that traced it, in a fixed order. The
@@ -25,6 +26,17 @@ struct BeamCounters {
 // (buffer.volume_radius2) and `photons_emitted` photon paths.
 void gather_volume_at(const RenderContext& ctx, const PixelSegments& segments, const VolumePhotonMap& photons,
                       int64_t photons_emitted, size_t pixel, SectionBuffer& buffer, BeamCounters& counters);
+
+// The beam's radius never falls below kFootprintRadii pixel footprints at the photon's distance
+// from the camera (along the path), times sqrt(r_i / r_0): where the pixels' rays lie further
+// apart than the radius, most photons fall between them and the few gathered weigh
+// 1 / (pi r^2) each, which makes the image noisy and moves its mean from seed to seed. The
+// floor shrinks more slowly than the radius but still to 0 (as i^((alpha-1)/4)), so the estimate
+// stays consistent; each photon's kernel is normalised at its own radius, 1 / (pi r(s)^2).
+// Near the camera the radius stays r_i (a cylinder): a kernel that narrowed there with the
+// footprint would give a photon at distance s a weight growing as 1/s^2 in every pixel it
+// touches, an error without bound.
+inline constexpr float kFootprintRadii = 1.0f;
 
 // The volume radius schedule's factor after pass i (0-based): r^2_(i+1) / r^2_i.
 inline double volume_radius_shrink(int pass, double alpha) { return (pass + alpha) / (pass + 1.0); }

@@ -140,7 +140,7 @@ struct PixelTracer {
             float u1 = rng.uniform(), u2 = rng.uniform();
             if (!ctx.lights.sample_direct(i, p, ns, u1, u2, s)) continue;
             if (dot(s.to_light, nf) <= 0) continue;  // below the true surface: no leak through it
-            const double t = s.distance / kSpeedOfLight + back_ns;
+            const double t = s.start_ns + s.distance / kSpeedOfLight + back_ns;
             // A section that keeps no slot for this arrival (an early section, light arriving
             // after its end) would drop it: no shadow ray is needed to find that out.
             if (buffer.layout.slot_of_bucket(ctx.timeline.bucket(t)) < 0) continue;

@@ -30,7 +30,7 @@ struct PhotonPath {
         const int max_depth = sc.render.max_depth;
         EmittedPhoton e = ctx.lights.emit(rng);
         Vec3 o = e.origin, d = e.direction, flux = e.flux;
-        double t = 0;
+        double t = e.start_ns;
         bool inside = false;
         float inside_ior = 1;
         const double cut = layout.full_paths ? 1e300 : layout.cut_ns;

@@ -7,8 +7,19 @@
 
 namespace sl {
 
+namespace {
+// The scene's extent for lights that cover it (a sun): the surfaces and the medium's box.
+Vec3 extent_min(const SceneDesc& d, const SceneGeometry& g) {
+    return d.medium.present && d.medium.has_bounds ? vmin(g.bounds_min(), d.medium.bounds_min) : g.bounds_min();
+}
+Vec3 extent_max(const SceneDesc& d, const SceneGeometry& g) {
+    return d.medium.present && d.medium.has_bounds ? vmax(g.bounds_max(), d.medium.bounds_max) : g.bounds_max();
+}
+}  // namespace
+
 RenderContext::RenderContext(const SceneDesc& desc)
-    : scene(with_imports(desc)), geometry(scene), lights(scene), camera(desc.camera) {
+    : scene(with_imports(desc)), geometry(scene), lights(scene, extent_min(scene, geometry), extent_max(scene, geometry)),
+      camera(desc.camera) {
     timeline.start_ns = desc.time.start_ns;
     timeline.end_ns = desc.time.end_ns;
     timeline.frames = desc.time.frames;

@@ -42,6 +42,12 @@ public:
     template <class F>
     void for_each_along(Vec3 o, Vec3 d, float length, float r2, F&& f) const;
 
+    // The same for a radius that grows along the line: photon i is taken when its distance
+    // to the line is below r(s) = max(r0, s0 + slope s) (s0 may be negative), and f(i, s, r(s)^2) is
+    // called. The tree is searched with the radius at the segment's far end.
+    template <class F>
+    void for_each_along_cone(Vec3 o, Vec3 d, float length, float r0, float s0, float slope, F&& f) const;
+
     static constexpr uint32_t kLeaf = 8;  // <= 32: a leaf's hits fit a bit mask
 
 private:
@@ -101,6 +107,53 @@ void VolumePhotonMap::for_each_along(Vec3 o, Vec3 d, float length, float r2, F&&
             const uint32_t i = first + static_cast<uint32_t>(std::countr_zero(mask));
             mask &= mask - 1;
             f(i, (px_[i] - o.x) * d.x + (py_[i] - o.y) * d.y + (pz_[i] - o.z) * d.z);
+        }
+    }
+}
+
+template <class F>
+void VolumePhotonMap::for_each_along_cone(Vec3 o, Vec3 d, float length, float r0, float s0, float slope, F&& f) const {
+    if (nodes_.empty() || !(length > 0)) return;
+    const float r = std::max(r0, s0 + slope * length);  // the widest, at the far end
+    auto inv = [](float v) { return 1.0f / (v == 0 ? 1e-30f : v); };
+    const float ix = inv(d.x), iy = inv(d.y), iz = inv(d.z);
+    uint32_t stack[64];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        const Node& n = nodes_[stack[--top]];
+        float t0 = 0, t1 = length;
+        {
+            float a = (n.lo[0] - r - o.x) * ix, b = (n.hi[0] + r - o.x) * ix;
+            t0 = std::max(t0, std::min(a, b)); t1 = std::min(t1, std::max(a, b));
+            a = (n.lo[1] - r - o.y) * iy; b = (n.hi[1] + r - o.y) * iy;
+            t0 = std::max(t0, std::min(a, b)); t1 = std::min(t1, std::max(a, b));
+            a = (n.lo[2] - r - o.z) * iz; b = (n.hi[2] + r - o.z) * iz;
+            t0 = std::max(t0, std::min(a, b)); t1 = std::min(t1, std::max(a, b));
+        }
+        if (t0 > t1) continue;
+        if (n.count == 0) {
+            stack[top++] = n.first_or_right;
+            stack[top++] = static_cast<uint32_t>(&n - nodes_.data()) + 1;
+            continue;
+        }
+        const uint32_t first = n.first_or_right;
+        uint32_t mask = 0;
+        float ss[kLeaf], rr[kLeaf];
+        for (uint32_t k = 0; k < n.count; ++k) {
+            const float vx = px_[first + k] - o.x, vy = py_[first + k] - o.y, vz = pz_[first + k] - o.z;
+            const float s = vx * d.x + vy * d.y + vz * d.z;
+            const float qx = vx - d.x * s, qy = vy - d.y * s, qz = vz - d.z * s;
+            const float rs = std::max(r0, s0 + slope * s);
+            ss[k] = s;
+            rr[k] = rs * rs;
+            const bool in = (s >= 0) & (s <= length) & (qx * qx + qy * qy + qz * qz < rr[k]);
+            mask |= static_cast<uint32_t>(in) << k;
+        }
+        while (mask) {
+            const uint32_t k = static_cast<uint32_t>(std::countr_zero(mask));
+            mask &= mask - 1;
+            f(first + k, ss[k], rr[k]);
         }
     }
 }

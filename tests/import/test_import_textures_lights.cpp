@@ -5,6 +5,7 @@
 
 #include <fstream>
 
+#include "core/import/model_scene.h"
 #include "core/import/resolve_imports.h"
 #include "stages/output/png_io.h"
 #include "tests/common/temp_dir.h"
@@ -101,18 +102,27 @@ TEST(ImportTextures, PluginLoadsOnlyForTexturedScenes) {
     EXPECT_EQ(texture_bytes(s), 2u * 2 * 3 * sizeof(float));
 }
 
-TEST(ImportLights, DirectionalLightIsNamedInAWarning) {
+TEST(ImportLights, DirectionalLightBecomesASunOfItsIrradiance) {
     TempDir dir;
     ModelMesh m;
     m.quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 0);
     nlohmann::json lights = {{"lights", {{{"type", "directional"}, {"name", "sun"}, {"intensity", 3.0}}}},
                              {"nodes", {{{"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}}}}};
     write_gltf(dir.file("sun.glb"), m, {{"lamp", Vec3(0), Vec3(1)}}, true, lights);
+    SceneDesc s = scene_for_model(dir.file("sun.glb"));
+    resolve_imports(s);
+    int suns = 0;
+    for (const LightDesc& l : s.lights) {
+        if (l.type != LightType::Sun) continue;
+        ++suns;
+        EXPECT_FLOAT_EQ(l.irradiance.x, 3.0f);  // glTF's directional intensity is W/m^2 here
+        EXPECT_NEAR(l.direction.z, -1.0f, 1e-6f);  // a node without rotation shines along -Z
+        EXPECT_EQ(l.angle_deg, 0.0f);
+    }
+    EXPECT_EQ(suns, 1);
     ProgramResult r = run_program({"info", dir.file("sun.glb")});
     EXPECT_EQ(r.exit_code, 0) << r.err;
-    EXPECT_NE(r.err.find("warning: " + dir.file("sun.glb") + ": light 'sun': directional lights are not imported yet"),
-              std::string::npos)
-        << r.err;
+    EXPECT_EQ(r.err.find("directional"), std::string::npos) << r.err;
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "render_helpers.h"
+#include "stages/render/beam_estimate.h"
 #include "scenes_for_tests.h"
 #include "test_medium_scenes.h"
 
@@ -123,6 +124,8 @@ void check_pulse(Vec3 sigma_s, bool tof, int lit_frames) {
     s.render.camera_tof = tof;
     test::Rendered r = test::render_all(s, EmissionMode::Pulse);
     const double half_w = 3.5;  // x seen at z = 0 spans [-3.5, 3.5]
+    // The beam's kernel: the radius, or a pixel footprint at the beam's distance (4 m) if wider.
+    const double widen = std::max(0.05, kFootprintRadii * PinholeCamera(s.camera).pixel_footprint(4) + 0.01);
     auto arrival = [&](double x) { return ((x + 3) + (tof ? std::sqrt(x * x + 16) : 0.0)) / test::kC; };
     int checked = 0;
     for (int k = 0; k < s.time.frames; ++k) {
@@ -131,7 +134,7 @@ void check_pulse(Vec3 sigma_s, bool tof, int lit_frames) {
         for (int i = 0; i < 64; ++i) {
             double xa = (2.0 * i / 64 - 1) * half_w, xb = (2.0 * (i + 1) / 64 - 1) * half_w;
             // The column's beam stretch (widened by the radius) meets the frame's interval?
-            bool expected = arrival(xb + 0.05) >= t0 && arrival(std::max(-3.0, xa - 0.05)) < t1;
+            bool expected = arrival(xb + widen) >= t0 && arrival(std::max(-3.0, xa - widen)) < t1;
             for (int y = 0; y < 16; ++y)
                 for (int c = 0; c < 3; ++c) {
                     double v = r.frames[k][(y * 64 + i) * 3 + c];

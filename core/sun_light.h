@@ -1,0 +1,73 @@
+#pragma once
+// The sun: a directional light with a small angular diameter, given by the irradiance it makes
+// on a plane facing it. `direction` is the way its light travels (from the sun into the scene).
+//
+// Photons leave a rectangle perpendicular to the direction that covers the scene's bounds
+// projected along it (grown by the spread of the cone over the scene's depth), with directions
+// inside the cone, cosine-weighted about its axis: the flux through the rectangle is exactly
+// E x area. Direct light is one shadow ray along a direction sampled the same way.
+//
+// Time starts when the wavefront, a plane perpendicular to the direction, enters the scene's
+// bounds: light reaches a point x at (dot(x, d) - h0) / c, h0 = min over the bounds' corners of
+// dot(corner, d). The rectangle sits a little before that plane (so that a surface lying in the
+// plane is still hit), and its light leaves it at a matching negative time.
+#include <cmath>
+
+#include "config/scene_desc.h"
+
+namespace sl {
+
+// A sun light as the scene file (or an importer) describes it: travel direction (any length),
+// angular diameter in degrees (0.53 for the sun seen from the earth; 0 for a perfectly
+// collimated light) and irradiance in W/m^2 on a plane facing the light.
+// (Inline, like the next one: the scene parser uses them without linking the renderer's core.)
+inline LightDesc make_sun_light(Vec3 direction, float angle_deg, Vec3 irradiance) {
+    LightDesc l;
+    l.type = LightType::Sun;
+    l.direction = normalize(direction);
+    l.angle_deg = angle_deg;
+    l.irradiance = irradiance;
+    return l;
+}
+
+// The irradiance of a sun disc of uniform radiance L (W sr^-1 m^-2) and angular diameter
+// angle_deg: E = L pi sin^2(angle/2).
+inline Vec3 sun_irradiance_from_radiance(Vec3 radiance, float angle_deg) {
+    const double s = std::sin(0.5 * angle_deg * 3.14159265358979323846 / 180.0);
+    return radiance * static_cast<float>(3.14159265358979323846 * s * s);
+}
+
+class SunLight {
+public:
+    SunLight() = default;
+    // Bounds: the scene's (geometry and medium box); a flat or empty box emits nothing.
+    SunLight(const LightDesc& desc, Vec3 bounds_min, Vec3 bounds_max);
+
+    Vec3 power() const { return irradiance_ * area_; }  // W through the emitting rectangle
+    Vec3 direction() const { return d_; }
+    double entry_offset() const { return h0_; }          // dot(x, d) where the wavefront is at t = 0
+
+    // A photon: origin on the rectangle, direction in the cone, and the time (ns, <= 0) at
+    // which it leaves the origin. Four uniforms.
+    void emit(float u1, float u2, float u3, float u4, Vec3& origin, Vec3& dir, double& start_ns) const;
+
+    // One sample of the direct irradiance at p (unit normal n facing the viewer): the
+    // irradiance estimate E cos(n, -w) / cos(d, w), the unit direction towards the sun, the
+    // length of the shadow ray (to the emitting rectangle) and the time at which the light
+    // left its start. False when the sampled direction is below the surface.
+    bool sample_direct(Vec3 p, Vec3 n, float u1, float u2, Vec3& irradiance, Vec3& to_light, float& distance,
+                       double& start_ns) const;
+
+private:
+    Vec3 sample_direction(float u1, float u2) const;  // travel direction, pdf cos/(pi sin^2 a)
+
+    Vec3 d_{0, -1, 0}, t_{1, 0, 0}, b_{0, 0, 1};  // direction and the rectangle's axes
+    Vec3 irradiance_;
+    float sin_half_ = 0;        // sine of the cone's half-angle
+    double h0_ = 0;             // wavefront at t = 0: dot(x, d) = h0
+    float lead_ = 0;            // the rectangle sits at dot(x, d) = h0 - lead
+    float u0_ = 0, v0_ = 0, du_ = 0, dv_ = 0;  // the rectangle: t in [u0, u0+du], b in [v0, v0+dv]
+    float area_ = 0;
+};
+
+}  // namespace sl
