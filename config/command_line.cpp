@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cmath>
 
+#include "config/duration.h"
 #include "config/limits.h"
 #include "config/parse_scene.h"
 #include "config/text_util.h"
@@ -149,8 +150,37 @@ const Option kOptions[] = {
      "also write the time-resolved stack (frames+2, height, width, RGB float32) as NumPy .npy",
      [](RunOptions& r, std::string_view f, std::string_view v) { r.cube_path = path_value(f, v); }},
     {"--resume", "", "",
-     "with --exr-dir: keep the sections whose frames a render of the same settings left there",
+     "continue an interrupted render of the same settings: finished frames from --exr-dir, the "
+     "section in progress from its checkpoint",
      [](RunOptions& r, std::string_view, std::string_view) { r.resume = true; }},
+    {"--checkpoint", "", "DIR",
+     "save the section in progress to DIR every --checkpoint-every and at an interrupt "
+     "(default with --exr-dir: that directory); --resume continues from it",
+     [](RunOptions& r, std::string_view f, std::string_view v) { r.checkpoint_dir = path_value(f, v); }},
+    {"--checkpoint-every", "", "DURATION",
+     "time between checkpoints, e.g. 90s, 20m, 2h (default 5m; 0: after every pass; off: only "
+     "at an interrupt)",
+     [](RunOptions& r, std::string_view f, std::string_view v) {
+         if (v == "off" || v == "never") {
+             r.checkpoint_every = -1.0;
+             return;
+         }
+         std::optional<double> d = parse_duration(v);
+         if (!d) bad_value(f, "must be a duration such as 90s, 20m, 2h or off, got '" + printable(v) + "'");
+         r.checkpoint_every = *d;
+     }},
+    {"--time-limit", "", "DURATION",
+     "render passes until DURATION (e.g. 90s, 20m, 2h) is spent, every section the same number; "
+     "--passes stays the upper bound",
+     [](RunOptions& r, std::string_view f, std::string_view v) {
+         std::optional<double> d = parse_duration(v);
+         if (!d || !(*d > 0))
+             bad_value(f, "must be a duration > 0 such as 90s, 20m or 2h, got '" + printable(v) + "'");
+         r.time_limit = *d;
+     }},
+    {"--preview", "", "FILE.png",
+     "while rendering, rewrite FILE.png every few seconds with a few frames of the section in progress",
+     [](RunOptions& r, std::string_view f, std::string_view v) { r.preview_path = path_value(f, v); }},
     {"--no-progress", "", "", "do not show progress on stderr",
      [](RunOptions& r, std::string_view, std::string_view) { r.progress = false; }},
 };
@@ -264,7 +294,8 @@ RunOptions parse_command_line(int argc, const char* const* argv) {
         fail("info needs a scene file: slowlight info SCENE.json");
     if (r.command == RunOptions::Command::Retime && !have_scene)
         fail("retime needs a cube file: slowlight retime CUBE.npy -o out.mp4 [--emission ...]");
-    if (r.resume && r.exr_dir.empty()) fail("--resume needs --exr-dir, where the finished frames are");
+    if (r.resume && r.exr_dir.empty() && r.checkpoint_dir.empty())
+        fail("--resume needs --exr-dir or --checkpoint, where the interrupted render left its state");
     return r;
 }
 

@@ -32,6 +32,11 @@ struct RunOptions {
     Strategy strategy = Strategy::Single;
     int threads = 0;  // 0: all cores
     bool progress = true;  // shown only when stderr is a terminal
+    // Never lose a long render (docs/checkpoints.md). checkpoint_dir empty: --exr-dir, if any.
+    std::string checkpoint_dir;
+    std::optional<double> checkpoint_every;  // seconds; < 0: only at an interrupt
+    std::optional<double> time_limit;        // seconds of wall time for the whole run
+    std::string preview_path;                // --preview FILE.png: contact sheet while rendering
     RenderOverrides overrides;
 };
 

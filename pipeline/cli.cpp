@@ -14,23 +14,53 @@
 #include "config/command_line.h"
 #include "config/parse_scene.h"
 #include "core/errors.h"
+#include "config/duration.h"
+#include "pipeline/checkpoint.h"
 #include "pipeline/frame_outputs.h"
 #include "pipeline/memory_plan.h"
 #include "pipeline/progress.h"
 #include "pipeline/render_pipeline.h"
+#include "pipeline/preview_sheet.h"
 #include "pipeline/resume.h"
+#include "pipeline/resume_checkpoints.h"
+#include "pipeline/resume_command.h"
 #include "pipeline/retime.h"
 #include "pipeline/run_stats.h"
 #include "pipeline/settings_hash.h"
 #include "pipeline/scene_info.h"
+#include "pipeline/time_budget.h"
 
 namespace sl {
 namespace {
 
 std::atomic<bool> g_cancel{false};
+// Until outputs are opened nothing has been written, so a signal then ends the run at once.
+std::atomic<bool> g_setting_up{true};
 
 extern "C" void on_signal(int) {
+    if (g_setting_up.load()) {
+        static const char msg[] = "slowlight: interrupted during set-up; nothing written\n";
+        ssize_t ignored = write(STDERR_FILENO, msg, sizeof msg - 1);
+        (void)ignored;
+        _exit(130);
+    }
     if (g_cancel.exchange(true)) _exit(130);  // a second signal: stop at once
+}
+
+// "frames 0-23 (sections 1-2, section 2 from 12 of 64 passes) to out.mp4 and exr/"
+std::string what_was_written(const PipelineStats& stats, const FrameOutputs& outputs, const RunOptions& o, int passes) {
+    if (outputs.frames_written == 0) return "nothing written";
+    std::string where;
+    auto add = [&](const std::string& w) { where += (where.empty() ? "" : ", ") + w; };
+    if (!o.output.empty()) add(o.output == "-" ? std::string("stdout") : o.output);
+    if (!o.exr_dir.empty()) add(o.exr_dir + "/");
+    if (!o.png_dir.empty()) add(o.png_dir + "/");
+    std::string text = "wrote frames 0-" + std::to_string(outputs.frames_written - 1);
+    if (stats.interrupted_section >= 0)
+        text += " (section " + std::to_string(stats.interrupted_section + 1) + " from " +
+                std::to_string(stats.passes_per_section[stats.interrupted_section]) + " of " + std::to_string(passes) +
+                " passes)";
+    return text + (where.empty() ? "" : " to " + where);
 }
 
 // Refuse up front what could only end in running out of memory.
@@ -51,8 +81,11 @@ SceneDesc load_scene(const RunOptions& o) {
     return scene;
 }
 
-int render(const RunOptions& o) {
+int render(const RunOptions& o, const std::vector<std::string>& argv) {
     auto t0 = std::chrono::steady_clock::now();
+    g_setting_up = true;
+    std::signal(SIGINT, on_signal);
+    std::signal(SIGTERM, on_signal);
     SceneDesc scene = load_scene(o);
     MemoryPlan plan = plan_memory(scene, o);
     check_fits_machine(plan);
@@ -61,6 +94,26 @@ int render(const RunOptions& o) {
     const std::string fingerprint = settings_fingerprint(scene, plan.sections, o.strategy);
 
     RenderContext ctx(scene);  // meshes and the BVH: input errors here come before any output exists
+
+    // Checkpoints: in --checkpoint DIR, or else in --exr-dir, where --resume looks anyway.
+    const std::string again = resume_command(argv);
+    CheckpointSettings checkpoints;
+    checkpoints.dir = !o.checkpoint_dir.empty() ? o.checkpoint_dir : o.exr_dir;
+    checkpoints.every = o.checkpoint_every.value_or(kDefaultCheckpointEvery);
+    checkpoints.keep_finished = o.exr_dir.empty() && plan.sections > 1;
+    SectionStateId state_id;
+    state_id.program_version = SLOWLIGHT_VERSION;
+    state_id.fingerprint = fingerprint;
+    state_id.sections = plan.sections;
+    state_id.passes_target = scene.render.passes;
+    state_id.width = ctx.width;
+    state_id.height = ctx.height;
+    const std::vector<SectionLayout> layouts = plan_sections(ctx, plan, o.strategy);
+    std::vector<SectionStart> starts;
+    if (o.resume)
+        starts = checkpoints_to_resume(checkpoints.dir, state_id, layouts, ctx.has_ambient());
+    else
+        refuse_existing_checkpoints(checkpoints.dir, again);
 
     OutputSettings out;
     out.video = o.output;
@@ -76,13 +129,28 @@ int render(const RunOptions& o) {
     out.exposure = o.exposure;
     out.metadata = {{"slowlight:version", SLOWLIGHT_VERSION}, {"slowlight:scene", scene.source},
                     {kFingerprintKey, fingerprint}};
+    g_setting_up = false;  // from here on a signal means: deliver what you have
     FrameOutputs outputs(out);  // every output is checked before rendering starts
 
     PipelineJob job;
     job.ctx = &ctx;
     job.plan = plan;
     job.strategy = o.strategy;
-    if (o.resume) job.on_disk = sections_on_disk(outputs, plan_sections(ctx, plan, o.strategy), fingerprint);
+    if (o.resume && !o.exr_dir.empty()) {
+        job.on_disk = sections_on_disk(outputs, layouts, fingerprint);
+        drop_interrupted_sections(outputs, layouts, job.on_disk);
+    }
+    job.starts = starts;
+    Checkpointer checkpointer(checkpoints, state_id);
+    if (checkpointer.enabled()) job.checkpointer = &checkpointer;
+    int to_render = 0;
+    for (int s = 0; s < plan.sections; ++s)
+        to_render += !(s < static_cast<int>(job.on_disk.size()) && job.on_disk[s]) &&
+                     !(s < static_cast<int>(starts.size()) && starts[s].finished);
+    TimeBudget budget = o.time_limit ? TimeBudget(*o.time_limit, t0, to_render) : TimeBudget();
+    if (budget.limited()) job.budget = &budget;
+    PreviewSheet preview(o.preview_path, scene.emission.mode, ctx.pulse_buckets, ctx.width, ctx.height);
+    if (preview.enabled()) job.preview = &preview;
     std::fprintf(stderr, "slowlight: %dx%d, %d frames, %d passes x %lld photons, %d section%s%s; buckets %s per section, about %s fixed\n",
                  ctx.width, ctx.height, scene.time.frames, scene.render.passes,
                  static_cast<long long>(scene.render.photons_per_pass), plan.sections, plan.sections > 1 ? "s" : "",
@@ -90,14 +158,26 @@ int render(const RunOptions& o) {
                  format_bytes(plan.buffer_bytes_per_section).c_str(), format_bytes(plan.fixed_overhead_bytes).c_str());
     double setup = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
-    std::signal(SIGINT, on_signal);
-    std::signal(SIGTERM, on_signal);
     ProgressBar bar(o.progress, plan.sections, scene.render.passes);
+    for (int s = 0; s < plan.sections; ++s)
+        if ((s < static_cast<int>(job.on_disk.size()) && job.on_disk[s]) || (s < static_cast<int>(starts.size()) && starts[s].finished))
+            bar.skip_section(s);
+    if (budget.limited())
+        bar.set_deadline(*o.time_limit - std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    job.log = [&](const std::string& line) { bar.message(line); };
+    job.section_started = [&](int s, int p) { bar.section_started(s, p); };
+    job.full_pass_seconds = [&](double t) { bar.expect_full_pass(t); };
+    job.passes_fixed = [&](int n) { bar.set_passes(n); };
     PipelineStats stats = run_pipeline(job, outputs, [&](int s, int p) { bar.update(s, p); }, g_cancel);
     if (stats.sections_resumed > 0)
         std::fprintf(stderr, "slowlight: resumed %d of %d sections from %s\n", stats.sections_resumed, plan.sections,
                      o.exr_dir.c_str());
     bar.finish();
+    if (budget.limited() && !stats.interrupted) {
+        int reached = budget.passes().value_or(scene.render.passes);
+        std::fprintf(stderr, "slowlight: time limit %s: %d pass%s per section (--passes %d)\n",
+                     format_duration(*o.time_limit).c_str(), reached, reached == 1 ? "" : "es", scene.render.passes);
+    }
     auto tf = std::chrono::steady_clock::now();
     outputs.finish();
     double output_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - tf).count();
@@ -112,13 +192,34 @@ int render(const RunOptions& o) {
         summary.exposure = outputs.exposure().value_or(1.0);
         summary.strategy = o.strategy;
         summary.threads = o.threads > 0 ? o.threads : tbb::info::default_concurrency();
+        summary.time_limit = o.time_limit.value_or(0);
+        summary.checkpoint_dir = checkpointer.enabled() ? checkpoints.dir : "";
+        Checkpointer::Totals ct = checkpointer.totals();
+        summary.checkpoint_writes = ct.writes;
+        summary.checkpoint_bytes = ct.last_bytes;
+        summary.checkpoint_seconds = ct.seconds;
+        summary.checkpoint_longest = ct.longest;
+        summary.preview_writes = preview.writes();
         summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         write_stats_json(o.stats_path, summary);
     }
     if (stats.interrupted) {
-        std::fprintf(stderr, "slowlight: interrupted; %lld frames written\n", static_cast<long long>(outputs.frames_written));
+        std::string where = stats.interrupted_section >= 0
+                                ? "in section " + std::to_string(stats.interrupted_section + 1) + "/" + std::to_string(plan.sections)
+                                : std::string("before a section's first pass");
+        std::fprintf(stderr, "slowlight: interrupted %s; %s\n", where.c_str(),
+                     what_was_written(stats, outputs, o, scene.render.passes).c_str());
+        if (checkpointer.enabled())
+            std::fprintf(stderr, "slowlight: %s; to continue: %s\n",
+                         stats.interrupted_checkpoint.empty() ? ("finished frames are in " + o.exr_dir).c_str()
+                                                              : ("state saved in " + stats.interrupted_checkpoint).c_str(),
+                         again.c_str());
+        else
+            std::fprintf(stderr, "slowlight: nothing saved to resume from (give --checkpoint DIR or --exr-dir to make a "
+                                 "render resumable)\n");
         return 130;
     }
+    checkpointer.remove_all();  // a finished render needs none of them
     return 0;
 }
 
@@ -142,7 +243,7 @@ int run_cli(int argc, char** argv) {
         if (o.threads > 0)
             threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, o.threads);
         if (o.command == RunOptions::Command::Retime) return retime(o);
-        return render(o);
+        return render(o, std::vector<std::string>(argv, argv + argc));
     } catch (const InputError& e) {
         std::fprintf(stderr, "error: %s\n", e.what());
         return 2;

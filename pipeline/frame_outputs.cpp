@@ -84,10 +84,11 @@ std::string FrameOutputs::exr_steady_path() const {
     return (std::filesystem::path(settings_.exr_dir) / "steady.exr").string();
 }
 
-void FrameOutputs::write_frame(int index, const std::vector<float>& rgb, bool on_disk) {
+void FrameOutputs::write_frame(int index, const std::vector<float>& rgb, bool on_disk, const Metadata& extra) {
     const int w = settings_.width, h = settings_.height;
     if (!settings_.exr_dir.empty() && !on_disk) {
         std::map<std::string, std::string> meta = settings_.metadata;
+        for (const auto& [k, v] : extra) meta[k] = v;
         double delta = (settings_.end_ns - settings_.start_ns) / std::max(1, settings_.frames);
         meta["slowlight:frame"] = std::to_string(index);
         meta["slowlight:frame_end_ns"] = std::to_string(settings_.start_ns + (index + 1) * delta);
@@ -102,10 +103,13 @@ void FrameOutputs::write_frame(int index, const std::vector<float>& rgb, bool on
     ++frames_written;
 }
 
-void FrameOutputs::write_steady(const std::vector<float>& rgb) {
+void FrameOutputs::write_steady(const std::vector<float>& rgb, const Metadata& extra) {
     const int w = settings_.width, h = settings_.height;
-    if (!settings_.exr_dir.empty())
-        seconds_exr += timed([&] { write_exr(exr_steady_path(), w, h, rgb.data(), settings_.metadata); });
+    if (!settings_.exr_dir.empty()) {
+        std::map<std::string, std::string> meta = settings_.metadata;
+        for (const auto& [k, v] : extra) meta[k] = v;
+        seconds_exr += timed([&] { write_exr(exr_steady_path(), w, h, rgb.data(), meta); });
+    }
     if (!settings_.png_dir.empty()) {
         tone_map_srgb8(rgb.data(), w, h, exposure_.value_or(1.0), rgb8_.data());
         seconds_png += timed([&] { write_png((std::filesystem::path(settings_.png_dir) / "steady.png").string(), w, h, rgb8_.data()); });

@@ -13,6 +13,7 @@
 
 #include "stages/output/exr_io.h"
 #include "stages/output/tone_map.h"
+#include "pipeline/resume_checkpoints.h"
 #include "stages/render/frame_assembly.h"
 
 namespace sl {
@@ -26,7 +27,9 @@ struct Section {
     SectionLayout layout;
     bool last = false;
     bool from_disk = false;  // resumed: its frames are read back from the EXR files
-    bool complete = true;    // false when interrupted: its frames are never written
+    bool complete = true;    // false when never started (or not one pass done): nothing written
+    bool partial = false;    // interrupted: written from the passes it had
+    int passes = 0;          // passes its frames got
     SectionRun run;
     std::optional<FrameAssembler> assembler;
 };
@@ -69,8 +72,12 @@ double exposure_of_brightest_pulse_frame(const SectionBuffer& buffer, const Rend
 // A short convergence made only to choose the exposure before the first section's frames are
 // encoded (with one section, the section itself provides it): the steady image for constant
 // emission; for pulses, every frame at a quarter of the resolution (a sixteenth of the memory).
-double exposure_from_preview(const RenderContext& ctx, SectionCounters& counters) {
+double exposure_from_preview(const RenderContext& ctx, SectionCounters& counters, const std::function<bool(int)>& stop,
+                             int& passes_done) {
     const int passes = std::max(2, ctx.scene.render.passes / 8);
+    int done = 0;
+    auto on_pass = [&](int p) { done = passes_done = p; };
+    auto cancelled = [&] { return stop(done); };
     const int64_t photons = ctx.scene.render.photons_per_pass;
     if (ctx.scene.emission.mode == EmissionMode::Pulse) {
         SceneDesc small = ctx.scene;
@@ -79,18 +86,26 @@ double exposure_from_preview(const RenderContext& ctx, SectionCounters& counters
         small.render.radius = ctx.initial_radius;
         RenderContext preview(small);
         SectionLayout l = make_section(preview.timeline, EmissionMode::Pulse, preview.pulse_buckets, 1, 0);
-        SectionRun run = render_section(preview, l, passes, photons, counters);
+        SectionRun run = render_section(preview, l, passes, photons, counters, on_pass, cancelled);
         return exposure_of_brightest_pulse_frame(*run.buffer, preview);
     }
     SectionLayout l;
     l.first_frame = l.end_frame = ctx.timeline.frames;
     l.first_bucket = l.end_frame;
     l.full_paths = true;
-    SectionRun run = render_section(ctx, l, passes, photons, counters);
+    SectionRun run = render_section(ctx, l, passes, photons, counters, on_pass, cancelled);
     FrameAssembler a(*run.buffer, EmissionMode::Constant, 1);
     std::vector<float> rgb;
     a.steady(rgb);
     return exposure_from_steady(rgb.data(), ctx.width, ctx.height);
+}
+
+// What an EXR of this section says about itself: the passes it got, and whether an interrupt
+// cut the section short (then --resume renders it further instead of keeping it).
+FrameOutputs::Metadata frame_metadata(const Section& s) {
+    FrameOutputs::Metadata m{{kPassesKey, std::to_string(s.passes)}};
+    if (s.partial) m[kInterruptedKey] = "1";
+    return m;
 }
 
 }  // namespace
@@ -116,15 +131,28 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameOutputs& outputs, const 
     const EmissionMode mode = ctx.scene.emission.mode;
     const std::vector<SectionLayout> layouts = plan_sections(ctx, plan, job.strategy);
     auto resumed = [&](int s) { return s < static_cast<int>(job.on_disk.size()) && job.on_disk[s]; };
+    auto start_of = [&](int s) { return s < static_cast<int>(job.starts.size()) ? job.starts[s] : SectionStart{}; };
+    auto log = [&](const std::string& line) {
+        if (job.log) job.log(line);
+        else std::fprintf(stderr, "%s\n", line.c_str());
+    };
+    stats.passes_per_section.assign(static_cast<size_t>(plan.sections), 0);
 
     if (outputs.needs_exposure() && resumed(plan.sections - 1) && mode == EmissionMode::Constant) {
         ExrImage steady = read_exr(outputs.exr_steady_path());
         outputs.set_exposure(exposure_from_steady(steady.rgb.data(), ctx.width, ctx.height));
-    } else if (outputs.needs_exposure() && (plan.sections > 1 || resumed(0))) {
+    } else if (outputs.needs_exposure() && (plan.sections > 1 || resumed(0) || start_of(0).finished)) {
         auto t0 = Clock::now();
-        outputs.set_exposure(exposure_from_preview(ctx, counters));
+        int preview_passes = 0;
+        // Stopped by an interrupt or, with --time-limit, after a sixteenth of the budget.
+        auto stop = [&](int done) { return cancel.load() || (job.budget && job.budget->preview_over(done)); };
+        outputs.set_exposure(exposure_from_preview(ctx, counters, stop, preview_passes));
         malloc_trim(0);  // the preview's photon map and buffer: back to the system
         stats.exposure_pass = since(t0);
+        if (preview_passes > 0 && mode == EmissionMode::Constant) {  // a full-resolution, full-path pass
+            if (job.budget) job.budget->expect_later_pass(stats.exposure_pass / preview_passes);
+            if (job.full_pass_seconds) job.full_pass_seconds(stats.exposure_pass / preview_passes);
+        }
     }
 
     flow::graph g;
@@ -144,19 +172,71 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameOutputs& outputs, const 
         if (resumed(index)) {
             s->from_disk = true;
             ++stats.sections_resumed;
+            s->passes = passes;
+            stats.passes_per_section[index] = passes;
             return s;
         }
         if (cancel.load()) {  // taken from the queue just before the interrupt: not started
             s->complete = false;
             return s;
         }
-        std::fprintf(stderr, "slowlight: section %d/%d, frames %d-%d: %s of time buckets\n", index + 1,
-                     plan.sections, s->layout.first_frame, s->layout.end_frame - 1,
-                     format_bytes(SectionBuffer::bytes_needed(ctx.pixels(), s->layout.slots(), ctx.has_ambient())).c_str());
-        s->run = render_section(ctx, s->layout, passes, photons_per_pass, counters,
-                                [&](int pass) { if (progress) progress(index, pass); },
-                                [&] { return cancel.load(); });
-        s->complete = s->run.buffer->passes_done == passes;
+        const SectionStart start = start_of(index);
+        std::unique_ptr<SectionBuffer> buffer;
+        if (start.from_checkpoint) {
+            buffer = load_section_state(start.path, job.checkpointer->id_for(index), s->layout, ctx.has_ambient());
+            ++stats.sections_resumed;
+        } else {
+            buffer = std::make_unique<SectionBuffer>(ctx.pixels(), s->layout, ctx.initial_radius, ctx.has_ambient());
+        }
+        SectionBuffer* live = buffer.get();
+        char line[256];
+        std::snprintf(line, sizeof line, "slowlight: section %d/%d, frames %d-%d: %s of time buckets%s", index + 1,
+                      plan.sections, s->layout.first_frame, s->layout.end_frame - 1,
+                      format_bytes(SectionBuffer::bytes_needed(ctx.pixels(), s->layout.slots(), ctx.has_ambient())).c_str(),
+                      start.from_checkpoint ? (start.finished ? "; finished, from its checkpoint"
+                                                              : ("; from its checkpoint at pass " +
+                                                                 std::to_string(start.passes_done)).c_str())
+                                            : "");
+        log(line);
+        bool by_interrupt = false;
+        if (start.finished) {
+            s->run.buffer = std::move(buffer);
+        } else {
+            if (job.budget) job.budget->section_started(live->passes_done);
+            if (job.section_started) job.section_started(index, live->passes_done);
+            auto on_pass = [&](int pass) {
+                if (progress) progress(index, pass);
+                if (job.budget) job.budget->pass_done(pass);
+                if (job.checkpointer) job.checkpointer->after_pass(*live);
+                if (job.preview) job.preview->after_pass(*live, outputs.exposure());
+            };
+            auto stop = [&] {
+                if (cancel.load()) return by_interrupt = true;
+                return job.budget != nullptr && job.budget->stop_before_pass(live->passes_done);
+            };
+            s->run = render_section(ctx, s->layout, passes, photons_per_pass, counters, on_pass, stop, std::move(buffer));
+        }
+        s->passes = s->run.buffer->passes_done;
+        if (by_interrupt) {
+            // Every pass is a picture: the frames are written from the passes done, and the
+            // state is saved so that --resume continues from here.
+            s->partial = true;
+            s->complete = s->passes > 0;
+            if (job.checkpointer && s->passes > 0) stats.interrupted_checkpoint = job.checkpointer->save(*s->run.buffer, false);
+            if (s->complete) stats.interrupted_section = index;
+        } else {
+            if (job.budget && !start.finished) {
+                bool first_decision = !job.budget->passes();
+                job.budget->section_finished(s->passes, false);
+                if (first_decision && job.budget->passes() && job.passes_fixed) job.passes_fixed(*job.budget->passes());
+            }
+            // Without --exr-dir a finished section's frames exist nowhere else until the video
+            // is closed: keep its final state so that --resume can write them again.
+            if (job.checkpointer && job.checkpointer->settings().keep_finished && !s->last && !start.finished)
+                job.checkpointer->save(*s->run.buffer, true);
+        }
+        if (s->complete) stats.passes_per_section[index] = s->passes;
+        if (job.preview && s->complete && !start.finished) job.preview->write(*s->run.buffer, outputs.exposure());
         stats.render.camera += s->run.times.camera;
         stats.render.photons += s->run.times.photons;
         stats.render.gather += s->run.times.gather;
@@ -166,7 +246,7 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameOutputs& outputs, const 
     });
     using Split = flow::multifunction_node<SectionPtr, std::tuple<FrameJob>>;
     Split split(g, flow::serial, [&](const SectionPtr& s, Split::output_ports_type& out) {
-        if (!s->complete) return;  // interrupted: a half-converged section is not written
+        if (!s->complete) return;  // never started: nothing to write
         for (int f = s->layout.first_frame; f < s->layout.end_frame; ++f) std::get<0>(out).try_put(FrameJob{s, f});
     });
     flow::queue_node<FrameJob> frame_queue(g);
@@ -188,7 +268,7 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameOutputs& outputs, const 
                         outputs.set_exposure(mode == EmissionMode::Pulse
                                                  ? exposure_of_brightest_pulse_frame(*s.run.buffer, ctx)
                                                  : exposure_from_steady(steady.data(), ctx.width, ctx.height));
-                    outputs.write_steady(steady);
+                    outputs.write_steady(steady, frame_metadata(s));
                 }
             }
             s.assembler->frame(job_in.frame, img.rgb);
@@ -205,14 +285,17 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameOutputs& outputs, const 
     Write write(g, flow::serial, [&](const FramePtr& frame, Write::output_ports_type& out) {
         const FrameImage& img = *frame;
         auto t0 = Clock::now();
-        outputs.write_frame(img.frame, img.rgb, img.section->from_disk);
+        outputs.write_frame(img.frame, img.rgb, img.section->from_disk, frame_metadata(*img.section));
         if (!img.before.empty()) outputs.write_cube_plane(img.before);
         if (!img.bucket.empty()) outputs.write_cube_plane(img.bucket);
         if (!img.after.empty()) outputs.write_cube_plane(img.after);
         stats.writing += since(t0);
         bool last = img.frame + 1 == img.section->layout.end_frame;
         if (last) {  // free the section's buckets before another section may allocate its own
-            ++stats.sections_done;
+            if (!img.section->partial) ++stats.sections_done;
+            // Its frames are in --exr-dir now: they, not the checkpoint, are what --resume reads.
+            if (job.checkpointer && !img.section->partial && !outputs.exr_dir().empty())
+                job.checkpointer->remove(img.section->layout.index);
             img.section->assembler.reset();
             img.section->run.buffer.reset();
             malloc_trim(0);  // hand the section's freed working memory back before the next one grows

@@ -7,7 +7,9 @@
 //
 // Frames leave in order. A section's time buckets are freed as soon as its last frame is
 // written; with two sections alive the next section renders while this one is encoded.
-// Interrupted, the section being rendered is dropped and the frames in hand are written.
+// Interrupted, the pass in flight finishes, the section in progress is saved (checkpoint) and
+// every one of its frames is assembled from the passes completed and written after the
+// finished sections; sections that never started are not written.
 #include <atomic>
 #include <functional>
 #include <string>
@@ -15,7 +17,11 @@
 
 #include "config/run_options.h"
 #include "pipeline/frame_outputs.h"
+#include "pipeline/checkpoint.h"
 #include "pipeline/memory_plan.h"
+#include "pipeline/preview_sheet.h"
+#include "pipeline/resume_checkpoints.h"
+#include "pipeline/time_budget.h"
 #include "stages/render/render_context.h"
 #include "stages/render/section_renderer.h"
 
@@ -27,6 +33,9 @@ struct PipelineStats {
     uint64_t photons = 0, rays = 0, photon_records = 0, photon_map_bytes = 0;
     int sections_done = 0, sections_resumed = 0;
     bool interrupted = false;
+    std::vector<int> passes_per_section;  // passes each section's frames got (0: not written)
+    int interrupted_section = -1;         // the section written from the passes it had, if any
+    std::string interrupted_checkpoint;   // where that section's state was saved ("" if nowhere)
 };
 
 // (section, passes done in it) after every pass.
@@ -37,6 +46,14 @@ struct PipelineJob {
     MemoryPlan plan;
     Strategy strategy = Strategy::Single;
     std::vector<bool> on_disk;  // per section: already rendered (--resume)
+    std::vector<SectionStart> starts;  // per section: a checkpoint to continue from (--resume)
+    Checkpointer* checkpointer = nullptr;  // saves the section in progress; null: never
+    TimeBudget* budget = nullptr;          // --time-limit; null: none
+    PreviewSheet* preview = nullptr;       // --preview; null: none
+    std::function<void(const std::string&)> log;               // one line for stderr
+    std::function<void(int section, int passes_done)> section_started;
+    std::function<void(double seconds)> full_pass_seconds;     // a full-path pass's time (preview)
+    std::function<void(int passes)> passes_fixed;              // --time-limit decided the passes
 };
 
 std::vector<SectionLayout> plan_sections(const RenderContext& ctx, const MemoryPlan& plan, Strategy strategy);

@@ -2,6 +2,7 @@
 
 #include <sys/resource.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -50,6 +51,22 @@ void write_stats_json(const std::string& path, const RunSummary& s) {
     j["sections_overlap"] = s.plan.overlap;
     j["exposure"] = s.exposure;
     j["interrupted"] = p.interrupted;
+    // The passes each section's frames got (0: not written); with --time-limit or after an
+    // interrupt they can be fewer than "passes".
+    j["passes_per_section"] = p.passes_per_section;
+    int reached = 0;
+    for (int n : p.passes_per_section)
+        if (n > 0) reached = reached == 0 ? n : std::min(reached, n);
+    j["passes_reached"] = reached;
+    if (p.interrupted_section >= 0) j["interrupted_section"] = p.interrupted_section;
+    if (s.time_limit > 0) j["time_limit_seconds"] = s.time_limit;
+    if (!s.checkpoint_dir.empty())
+        j["checkpoints"] = {{"dir", s.checkpoint_dir},
+                            {"writes", s.checkpoint_writes},
+                            {"bytes_each", s.checkpoint_bytes},
+                            {"seconds_total", s.checkpoint_seconds},
+                            {"seconds_longest", s.checkpoint_longest}};
+    if (s.preview_writes > 0) j["preview_writes"] = s.preview_writes;
     // A device or FIFO (/dev/stdout, a pipe) is written in place, never replaced by a rename.
     std::error_code ec;
     auto type = std::filesystem::status(path, ec).type();

@@ -15,21 +15,23 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 
 SectionRun render_section(const RenderContext& ctx, const SectionLayout& layout, int passes,
                           int64_t photons_per_pass, SectionCounters& counters,
-                          const PassCallback& on_pass, const std::function<bool()>& cancelled) {
+                          const PassCallback& on_pass, const std::function<bool()>& cancelled,
+                          std::unique_ptr<SectionBuffer> resume_from) {
     namespace flow = tbb::flow;
     SectionRun run;
-    run.buffer = std::make_unique<SectionBuffer>(ctx.pixels(), layout, ctx.initial_radius, ctx.has_ambient());
+    run.buffer = resume_from ? std::move(resume_from)
+                             : std::make_unique<SectionBuffer>(ctx.pixels(), layout, ctx.initial_radius, ctx.has_ambient());
     SectionBuffer& buffer = *run.buffer;
     PhotonMap photons;
     // Volume photons exist only with a medium: a vacuum scene allocates none of it.
     std::unique_ptr<VolumePhotonMap> volume;
     if (ctx.medium) {
         volume = std::make_unique<VolumePhotonMap>();
-        buffer.volume_radius2 = static_cast<double>(ctx.volume_radius) * ctx.volume_radius;
+        if (buffer.passes_done == 0) buffer.volume_radius2 = static_cast<double>(ctx.volume_radius) * ctx.volume_radius;
     }
 
     flow::graph g;
-    int next_pass = 0;
+    int next_pass = buffer.passes_done;
     flow::input_node<int> source(g, [&](tbb::flow_control& fc) -> int {
         if (next_pass >= passes || (cancelled && cancelled())) {
             fc.stop();

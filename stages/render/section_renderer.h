@@ -38,8 +38,13 @@ struct SectionRun {
     uint64_t photon_map_bytes = 0;  // surface and volume photons
 };
 
+// Renders passes until `passes` are done or `cancelled()` (asked before each pass) says stop.
+// `resume_from`: the state to render into, fresh (a new SectionBuffer) or a checkpoint's (its
+// passes_done passes are kept; the random streams of pass i depend only on the seed and i, so
+// the result equals a render that never stopped). Null: a fresh buffer is made here.
 SectionRun render_section(const RenderContext& ctx, const SectionLayout& layout, int passes,
                           int64_t photons_per_pass, SectionCounters& counters,
-                          const PassCallback& on_pass = {}, const std::function<bool()>& cancelled = {});
+                          const PassCallback& on_pass = {}, const std::function<bool()>& cancelled = {},
+                          std::unique_ptr<SectionBuffer> resume_from = nullptr);
 
 }  // namespace sl
