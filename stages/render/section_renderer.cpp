@@ -2,6 +2,7 @@
 
 #include <tbb/flow_graph.h>
 
+#include <atomic>
 #include <chrono>
 
 namespace sl {
@@ -32,8 +33,11 @@ SectionRun render_section(const RenderContext& ctx, const SectionLayout& layout,
 
     flow::graph g;
     int next_pass = buffer.passes_done;
+    // The source makes its next item ahead of time, so `cancelled` is asked where a pass really
+    // starts (with the passes done so far); a pass it refuses does nothing (-1).
+    std::atomic<bool> stopped{false};
     flow::input_node<int> source(g, [&](tbb::flow_control& fc) -> int {
-        if (next_pass >= passes || (cancelled && cancelled())) {
+        if (next_pass >= passes || stopped.load()) {
             fc.stop();
             return 0;
         }
@@ -41,12 +45,17 @@ SectionRun render_section(const RenderContext& ctx, const SectionLayout& layout,
     });
     flow::limiter_node<int> one_pass_at_a_time(g, 1);
     flow::function_node<int, int> photon(g, flow::serial, [&](int pass) {
+        if (stopped.load() || (cancelled && cancelled())) {
+            stopped = true;
+            return -1;
+        }
         auto t0 = std::chrono::steady_clock::now();
         photons.build(ctx, layout, pass, photons_per_pass, 2 * buffer.max_radius, counters.photons, volume.get());
         run.times.photons += seconds_since(t0);
         return pass;
     });
     flow::function_node<int, flow::continue_msg> camera(g, flow::serial, [&](int pass) {
+        if (pass < 0) return flow::continue_msg();
         CameraPassTimes t = camera_pass(ctx, pass, PassPhotons{photons, volume.get(), photons_per_pass}, buffer,
                                         counters.camera);
         run.times.camera += t.trace;
