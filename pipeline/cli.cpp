@@ -169,10 +169,10 @@ int render(const RunOptions& o, const std::vector<std::string>& argv) {
     job.full_pass_seconds = [&](double t) { bar.expect_full_pass(t); };
     job.passes_fixed = [&](int n) { bar.set_passes(n); };
     PipelineStats stats = run_pipeline(job, outputs, [&](int s, int p) { bar.update(s, p); }, g_cancel);
+    bar.finish();
     if (stats.sections_resumed > 0)
         std::fprintf(stderr, "slowlight: resumed %d of %d sections from %s\n", stats.sections_resumed, plan.sections,
-                     o.exr_dir.c_str());
-    bar.finish();
+                     (o.exr_dir.empty() ? checkpoints.dir : o.exr_dir).c_str());
     if (budget.limited() && !stats.interrupted) {
         int reached = budget.passes().value_or(scene.render.passes);
         std::fprintf(stderr, "slowlight: time limit %s: %d pass%s per section (--passes %d)\n",
