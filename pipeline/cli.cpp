@@ -45,6 +45,10 @@ extern "C" void on_signal(int) {
         _exit(130);
     }
     if (g_cancel.exchange(true)) _exit(130);  // a second signal: stop at once
+    static const char msg[] = "\nslowlight: interrupted: finishing the pass in flight, then saving the section and "
+                              "writing its frames (interrupt again to quit at once)\n";
+    ssize_t ignored = write(STDERR_FILENO, msg, sizeof msg - 1);
+    (void)ignored;
 }
 
 // "frames 0-23 (sections 1-2, section 2 from 12 of 64 passes) to out.mp4 and exr/"
@@ -60,7 +64,7 @@ std::string what_was_written(const PipelineStats& stats, const FrameOutputs& out
         text += " (section " + std::to_string(stats.interrupted_section + 1) + " from " +
                 std::to_string(stats.passes_per_section[stats.interrupted_section]) + " of " + std::to_string(passes) +
                 " passes)";
-    return text + (where.empty() ? "" : " to " + where);
+    return text + (where.empty() ? " (to no output: none was asked for)" : " to " + where);
 }
 
 // Refuse up front what could only end in running out of memory.
