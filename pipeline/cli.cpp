@@ -162,7 +162,7 @@ int render(const RunOptions& o, const std::vector<std::string>& argv) {
                  format_bytes(plan.buffer_bytes_per_section).c_str(), format_bytes(plan.fixed_overhead_bytes).c_str());
     double setup = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
-    ProgressBar bar(o.progress, plan.sections, scene.render.passes);
+    ProgressBar bar(o.progress, plan.sections, scene.render.passes, scene.render.alpha);
     for (int s = 0; s < plan.sections; ++s)
         if ((s < static_cast<int>(job.on_disk.size()) && job.on_disk[s]) || (s < static_cast<int>(starts.size()) && starts[s].finished))
             bar.skip_section(s);
@@ -170,7 +170,7 @@ int render(const RunOptions& o, const std::vector<std::string>& argv) {
         bar.set_deadline(*o.time_limit - std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     job.log = [&](const std::string& line) { bar.message(line); };
     job.section_started = [&](int s, int p) { bar.section_started(s, p); };
-    job.full_pass_seconds = [&](double t) { bar.expect_full_pass(t); };
+    job.full_pass_seconds = [&](double t, int n) { bar.expect_full_pass(t, n); };
     job.passes_fixed = [&](int n) { bar.set_passes(n); };
     PipelineStats stats = run_pipeline(job, outputs, [&](int s, int p) { bar.update(s, p); }, g_cancel);
     bar.finish();

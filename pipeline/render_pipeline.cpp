@@ -151,7 +151,7 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameOutputs& outputs, const 
         stats.exposure_pass = since(t0);
         if (preview_passes > 0 && mode == EmissionMode::Constant) {  // a full-resolution, full-path pass
             if (job.budget) job.budget->expect_later_pass(stats.exposure_pass / preview_passes);
-            if (job.full_pass_seconds) job.full_pass_seconds(stats.exposure_pass / preview_passes);
+            if (job.full_pass_seconds) job.full_pass_seconds(stats.exposure_pass / preview_passes, preview_passes);
         }
     }
 

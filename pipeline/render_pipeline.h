@@ -52,7 +52,7 @@ struct PipelineJob {
     PreviewSheet* preview = nullptr;       // --preview; null: none
     std::function<void(const std::string&)> log;               // one line for stderr
     std::function<void(int section, int passes_done)> section_started;
-    std::function<void(double seconds)> full_pass_seconds;     // a full-path pass's time (preview)
+    std::function<void(double seconds, int passes)> full_pass_seconds;  // the preview's mean pass
     std::function<void(int passes)> passes_fixed;              // --time-limit decided the passes
 };
 

@@ -5,6 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <vector>
 
 #include "pipeline/progress.h"
@@ -17,11 +20,17 @@ struct Render {
     int passes = 64;
     double full_pass = 0;          // the preview's pass, 0: unknown (one section)
     // Cheaper as the radii shrink (the gather finds fewer photons), averaging per_pass.
-    static double shape(int pass) { return 0.8 + 0.4 * std::pow(pass + 1.0, -0.3); }
+    // (On the demo the first passes of a section cost about 30% more than its last ones.)
+    static double shape(int pass) { return 0.7 + 0.5 * std::pow(pass + 1.0, -0.3); }
+    // And +-15% from pass to pass (a machine shared with other work), the same every run.
+    static double jitter(int section, int pass) {
+        uint32_t h = static_cast<uint32_t>(section * 7919 + pass) * 2654435761u;
+        return 1.0 + 0.15 * ((h >> 8) / double(1u << 24) * 2 - 1);
+    }
     double cost(int section, int pass) const {
         double mean = 0;
         for (int p = 0; p < passes; ++p) mean += shape(p) / passes;
-        return per_pass[section] * shape(pass) / mean;
+        return per_pass[section] * shape(pass) / mean * jitter(section, pass);
     }
 };
 
@@ -34,7 +43,7 @@ double worst_error(const Render& r, int warmup) {
         for (int p = 0; p < r.passes; ++p) end_of.push_back(t += r.cost(s, p));
     const double total = t;
     TimeLeftEstimator e(K, r.passes);
-    if (r.full_pass > 0) e.expect_full_pass(r.full_pass);
+    if (r.full_pass > 0) e.expect_full_pass(r.full_pass, r.passes / 8);
     double worst = 0, now = 0;
     for (int s = 0; s < K; ++s) {
         e.section_started(s, 0, now);
@@ -45,18 +54,24 @@ double worst_error(const Render& r, int warmup) {
             if (p + 1 < warmup || truth < 1e-9) continue;
             std::optional<double> left = e.seconds_left();
             EXPECT_TRUE(left.has_value());
-            worst = std::max(worst, std::abs(left.value_or(0) - truth) / truth);
+            double err = std::abs(left.value_or(0) - truth) / truth;
+            if (err > worst && getenv("TL_DEBUG")) std::printf("  s%d p%d err %.3f\n", s, p + 1, err);
+            worst = std::max(worst, err);
         }
     }
     return worst;
 }
 
 TEST(TimeLeft, OneSectionWithinTwentyPercentAfterAFewPasses) {
-    EXPECT_LT(worst_error(Render{{0.12}, 64, 0}, 4), 0.20);
+    const double worst = worst_error(Render{{0.12}, 64, 0}, 6);
+    std::printf("worst error after the 6th pass: %.1f%%\n", 100 * worst);
+    EXPECT_LT(worst, 0.20);
 }
 
 TEST(TimeLeft, FourSectionsOfRisingCostWithinTwentyPercent) {
-    EXPECT_LT(worst_error(Render{{0.19, 0.26, 0.29, 0.38}, 64, 0.41}, 4), 0.20);
+    const double worst = worst_error(Render{{0.19, 0.26, 0.29, 0.38}, 64, 0.41}, 6);
+    std::printf("worst error after the 6th pass of each section: %.1f%%\n", 100 * worst);
+    EXPECT_LT(worst, 0.20);
 }
 
 TEST(TimeLeft, NothingBeforeTwoPassesAreTimed) {
@@ -67,7 +82,7 @@ TEST(TimeLeft, NothingBeforeTwoPassesAreTimed) {
     EXPECT_FALSE(e.seconds_left().has_value());
     e.pass_done(0, 2, 7.0);
     ASSERT_TRUE(e.seconds_left().has_value());
-    EXPECT_DOUBLE_EQ(*e.seconds_left(), 8.0);  // 8 passes of 1 s: the time before the first pass is not one
+    EXPECT_NEAR(*e.seconds_left(), 8.0, 1e-9);  // 8 passes of 1 s: the time before the first pass is not one
 }
 
 TEST(TimeLeft, ResumedSectionsCountNothing) {
@@ -76,7 +91,7 @@ TEST(TimeLeft, ResumedSectionsCountNothing) {
     e.section_started(0, 0, 0.0);
     for (int p = 1; p <= 4; ++p) e.pass_done(0, p, p * 1.0);
     ASSERT_TRUE(e.seconds_left().has_value());
-    EXPECT_DOUBLE_EQ(*e.seconds_left(), 6.0 + 10.0);  // the rest of section 1, all of section 2
+    EXPECT_NEAR(*e.seconds_left(), 6.0 + 10.0, 1e-9);  // the rest of section 1, all of section 2
 }
 
 }  // namespace
