@@ -55,8 +55,14 @@ std::optional<double> TimeLeftEstimator::seconds_left() const {
         for (int i = from; i <= to; ++i) total += cost(i);
         return total;
     };
-    double left = sum(passes_done_ + 1, passes_);
-    const double section_now = sum(1, passes_);  // a whole section at this section's cost
+    // On a busy machine a fit to a few noisy passes can promise too steep a decline: take the
+    // mean of the fit's forecast and the latest quarter of the passes' plain average.
+    const size_t window = std::max<size_t>(2, n / 4);
+    const double recent = std::accumulate(recent_.end() - static_cast<std::ptrdiff_t>(window), recent_.end(), 0.0) /
+                          static_cast<double>(window);
+    const int to_go = std::max(0, passes_ - passes_done_);
+    double left = 0.5 * (sum(passes_done_ + 1, passes_) + to_go * recent);
+    const double section_now = 0.5 * (sum(1, passes_) + passes_ * recent);  // a whole section at this cost
     // The preview's passes are early (costlier) ones but trace no frame's buckets; measured on
     // the demo, its mean pass is close to the last section's (0.41 s against 0.38 s).
     const double section_full = full_pass_ > 0 ? full_pass_ * passes_ : section_now;
