@@ -150,16 +150,13 @@ const Option kOptions[] = {
      "also write the time-resolved stack (frames+2, height, width, RGB float32) as NumPy .npy",
      [](RunOptions& r, std::string_view f, std::string_view v) { r.cube_path = path_value(f, v); }},
     {"--resume", "", "",
-     "continue an interrupted render of the same settings: finished frames from --exr-dir, the "
-     "section in progress from its checkpoint",
+     "continue an interrupted render: frames from --exr-dir, the rest from its checkpoint",
      [](RunOptions& r, std::string_view, std::string_view) { r.resume = true; }},
     {"--checkpoint", "", "DIR",
-     "save the section in progress to DIR every --checkpoint-every and at an interrupt "
-     "(default with --exr-dir: that directory); --resume continues from it",
+     "save the section in progress to DIR now and then and at Ctrl-C (default: --exr-dir)",
      [](RunOptions& r, std::string_view f, std::string_view v) { r.checkpoint_dir = path_value(f, v); }},
-    {"--checkpoint-every", "", "DURATION",
-     "time between checkpoints, e.g. 90s, 20m, 2h (default 5m; 0: after every pass; off: only "
-     "at an interrupt)",
+    {"--checkpoint-every", "", "TIME",
+     "time between checkpoints: 90s, 20m, 2h (default 5m; 0: every pass; off: Ctrl-C only)",
      [](RunOptions& r, std::string_view f, std::string_view v) {
          if (v == "off" || v == "never") {
              r.checkpoint_every = -1.0;
@@ -169,9 +166,8 @@ const Option kOptions[] = {
          if (!d) bad_value(f, "must be a duration such as 90s, 20m, 2h or off, got '" + printable(v) + "'");
          r.checkpoint_every = *d;
      }},
-    {"--time-limit", "", "DURATION",
-     "render passes until DURATION (e.g. 90s, 20m, 2h) is spent, every section the same number; "
-     "--passes stays the upper bound",
+    {"--time-limit", "", "TIME",
+     "render passes until TIME (90s, 20m, 2h) is spent; --passes stays the upper bound",
      [](RunOptions& r, std::string_view f, std::string_view v) {
          std::optional<double> d = parse_duration(v);
          if (!d || !(*d > 0))
@@ -179,7 +175,7 @@ const Option kOptions[] = {
          r.time_limit = *d;
      }},
     {"--preview", "", "FILE.png",
-     "while rendering, rewrite FILE.png every few seconds with a few frames of the section in progress",
+     "while rendering, a contact sheet of the section in progress, rewritten every few seconds",
      [](RunOptions& r, std::string_view f, std::string_view v) { r.preview_path = path_value(f, v); }},
     {"--no-progress", "", "", "do not show progress on stderr",
      [](RunOptions& r, std::string_view, std::string_view) { r.progress = false; }},
