@@ -45,7 +45,7 @@ extern "C" void on_signal(int) {
         _exit(130);
     }
     if (g_cancel.exchange(true)) _exit(130);  // a second signal: stop at once
-    static const char msg[] = "\nslowlight: interrupted: finishing the pass in flight, then saving the section and "
+    static const char msg[] = "\nslowlight: interrupted: ending the pass in flight, then saving the section and "
                               "writing its frames (interrupt again to quit at once)\n";
     ssize_t ignored = write(STDERR_FILENO, msg, sizeof msg - 1);
     (void)ignored;

@@ -214,9 +214,12 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameOutputs& outputs, const 
                 if (cancel.load()) return by_interrupt = true;
                 return job.budget != nullptr && job.budget->stop_before_pass(live->passes_done);
             };
-            s->run = render_section(ctx, s->layout, passes, photons_per_pass, counters, on_pass, stop, std::move(buffer));
+            s->run = render_section(ctx, s->layout, passes, photons_per_pass, counters, on_pass, stop, std::move(buffer),
+                                    &cancel);
         }
         s->passes = s->run.buffer->passes_done;
+        // (a pass abandoned while its photons were traced ends the section without asking `stop`)
+        if (!start.finished && cancel.load() && s->passes < passes) by_interrupt = true;
         if (by_interrupt) {
             // Every pass is a picture: the frames are written from the passes done, and the
             // state is saved so that --resume continues from here.

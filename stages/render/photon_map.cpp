@@ -99,8 +99,9 @@ uint64_t PhotonMap::bytes() const {
     return b;
 }
 
-void PhotonMap::build(const RenderContext& ctx, const SectionLayout& layout, int pass, int64_t count,
-                      double cell_size, PhotonTraceCounters& counters, VolumePhotonMap* volume) {
+bool PhotonMap::build(const RenderContext& ctx, const SectionLayout& layout, int pass, int64_t count,
+                      double cell_size, PhotonTraceCounters& counters, VolumePhotonMap* volume,
+                      const std::atomic<bool>* abandon) {
     const HomogeneousMedium* medium = ctx.medium ? &*ctx.medium : nullptr;
     if (!medium) volume = nullptr;
     const size_t nbatches = ctx.lights.has_emission() ? static_cast<size_t>((count + kBatch - 1) / kBatch) : 0;
@@ -110,6 +111,7 @@ void PhotonMap::build(const RenderContext& ctx, const SectionLayout& layout, int
         Batch& batch = batches_[b];
         batch.records.clear();
         batch.volume.clear();
+        if (abandon && abandon->load(std::memory_order_relaxed)) return;
         Rng rng(ctx.scene.render.seed, 2, static_cast<uint64_t>(pass), b);
         PhotonPath path{ctx, layout, batch.records, medium, volume ? &batch.volume : nullptr};
         int64_t n = std::min<int64_t>(kBatch, count - static_cast<int64_t>(b) * kBatch);
@@ -117,6 +119,7 @@ void PhotonMap::build(const RenderContext& ctx, const SectionLayout& layout, int
         counters.photons.fetch_add(static_cast<uint64_t>(n), std::memory_order_relaxed);
         counters.rays.fetch_add(path.rays, std::memory_order_relaxed);
     });
+    if (abandon && abandon->load()) return false;
     size_t total = 0;
     for (const Batch& v : batches_) total += v.records.size();
     counters.stored.fetch_add(total, std::memory_order_relaxed);
@@ -128,6 +131,7 @@ void PhotonMap::build(const RenderContext& ctx, const SectionLayout& layout, int
         volume->build(parts);
         counters.stored_volume.fetch_add(volume->size(), std::memory_order_relaxed);
     }
+    return true;
 }
 
 // A stable two-step counting sort by hash slot that runs in parallel and gives the same order

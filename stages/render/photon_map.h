@@ -33,8 +33,11 @@ class PhotonMap {
 public:
     // Traces `count` photon paths of pass `pass` and builds the grid with the given cell size.
     // With a medium in ctx, paths also scatter in it; its events go to `volume` when given.
-    void build(const RenderContext& ctx, const SectionLayout& layout, int pass, int64_t count,
-               double cell_size, PhotonTraceCounters& counters, VolumePhotonMap* volume = nullptr);
+    // `abandon`, when set during the pass (an interrupt), stops it within a batch of photons; the
+    // map is then incomplete and must not be gathered from (build returns false).
+    bool build(const RenderContext& ctx, const SectionLayout& layout, int pass, int64_t count,
+               double cell_size, PhotonTraceCounters& counters, VolumePhotonMap* volume = nullptr,
+               const std::atomic<bool>* abandon = nullptr);
 
     size_t size() const { return sorted_.size(); }
     // This pass's surface records (grid order), e.g. for flux bookkeeping in tests.

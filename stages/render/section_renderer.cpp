@@ -17,7 +17,7 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 SectionRun render_section(const RenderContext& ctx, const SectionLayout& layout, int passes,
                           int64_t photons_per_pass, SectionCounters& counters,
                           const PassCallback& on_pass, const std::function<bool()>& cancelled,
-                          std::unique_ptr<SectionBuffer> resume_from) {
+                          std::unique_ptr<SectionBuffer> resume_from, const std::atomic<bool>* abandon) {
     namespace flow = tbb::flow;
     SectionRun run;
     run.buffer = resume_from ? std::move(resume_from)
@@ -50,8 +50,13 @@ SectionRun render_section(const RenderContext& ctx, const SectionLayout& layout,
             return -1;
         }
         auto t0 = std::chrono::steady_clock::now();
-        photons.build(ctx, layout, pass, photons_per_pass, 2 * buffer.max_radius, counters.photons, volume.get());
+        bool whole = photons.build(ctx, layout, pass, photons_per_pass, 2 * buffer.max_radius, counters.photons,
+                                   volume.get(), abandon);
         run.times.photons += seconds_since(t0);
+        if (!whole) {
+            stopped = true;
+            return -1;
+        }
         return pass;
     });
     flow::function_node<int, flow::continue_msg> camera(g, flow::serial, [&](int pass) {

@@ -134,6 +134,36 @@ TEST(Interrupt, OneSectionDeliversEveryFrameFromThePassesDone) {
     fs::remove_all(dir);
 }
 
+// A pass of many photons is abandoned while they are traced (the buffer keeps the passes before
+// it), so an interrupt does not wait for it: fewer photons were traced than the passes done plus
+// one, and the frames equal a render of the passes done.
+TEST(Interrupt, AbandonsAPassWhilePhotonsAreTraced) {
+    const std::string dir = test::fresh_dir("abandon");
+    auto args = [&](const std::string& sub, const std::string& passes) {
+        return std::vector<std::string>{"render", "--width", "16", "--height", "16", "--frames", "3", "--passes", passes,
+                                        "--photons", "1000000", "--exr-dir", dir + "/" + sub, "--stats",
+                                        dir + "/" + sub + ".json", "--checkpoint-every", "0", "--no-progress"};
+    };
+    int abandoned = 0, n = 0;
+    for (int attempt = 0; attempt < 3 && abandoned == 0; ++attempt) {
+        fs::remove_all(dir + "/a");
+        test::Child c = test::spawn(args("a", "1000"), dir + "/err.txt");
+        ASSERT_TRUE(test::wait_for(dir + "/a/section_0000.ckpt"));  // the first pass is done
+        std::this_thread::sleep_for(std::chrono::milliseconds(200));  // the second is under way
+        kill(c.pid, SIGINT);
+        ASSERT_EQ(test::wait_exit(c), 130);
+        nlohmann::json s = test::read_json(dir + "/a.json");
+        n = s["passes_per_section"][0].get<int>();
+        abandoned += s["photons_traced"].get<int64_t>() < int64_t(n + 1) * 1000000;
+    }
+    EXPECT_GE(abandoned, 1) << "the pass in flight was always finished";
+    ASSERT_GE(n, 1);
+    test::RunResult b = test::run(args("b", std::to_string(n)), dir);
+    ASSERT_EQ(b.status, 0) << b.err;
+    test::expect_same_exrs(dir + "/a", dir + "/b", 3);
+    fs::remove_all(dir);
+}
+
 // A signal during set-up (here: while a large mesh is being read) ends the run at once with
 // exit 130 and nothing written.
 TEST(Interrupt, DuringSetUpWritesNothing) {
