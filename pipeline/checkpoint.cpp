@@ -42,8 +42,9 @@ Checkpointer::Checkpointer(CheckpointSettings settings, SectionStateId id)
     if (!enabled()) return;
     std::error_code ec;
     fs::create_directories(settings_.dir, ec);
-    if (!fs::is_directory(settings_.dir, ec))
-        throw RuntimeFailure("--checkpoint " + settings_.dir + ": cannot create the directory");
+    if (!fs::is_directory(settings_.dir))
+        throw RuntimeFailure(settings_.flag + " " + settings_.dir + ": cannot create the directory" +
+                             (ec ? ": " + ec.message() : std::string()));
 }
 
 SectionStateId Checkpointer::id_for(int section) const {

@@ -21,6 +21,7 @@ struct CheckpointSettings {
     std::string dir;       // empty: no checkpoints
     double every = kDefaultCheckpointEvery;  // seconds; 0: after every pass; < 0: only at an interrupt
     bool keep_finished = false;              // no --exr-dir and more than one section
+    std::string flag = "--checkpoint";       // the option that named `dir`, for messages
 };
 
 std::string checkpoint_path(const std::string& dir, int section);

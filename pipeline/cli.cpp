@@ -103,6 +103,7 @@ int render(const RunOptions& o, const std::vector<std::string>& argv) {
     const std::string again = resume_command(argv);
     CheckpointSettings checkpoints;
     checkpoints.dir = !o.checkpoint_dir.empty() ? o.checkpoint_dir : o.exr_dir;
+    checkpoints.flag = !o.checkpoint_dir.empty() ? "--checkpoint" : "--exr-dir";
     checkpoints.every = o.checkpoint_every.value_or(kDefaultCheckpointEvery);
     checkpoints.keep_finished = o.exr_dir.empty() && plan.sections > 1;
     SectionStateId state_id;
@@ -134,6 +135,7 @@ int render(const RunOptions& o, const std::vector<std::string>& argv) {
     out.metadata = {{"slowlight:version", SLOWLIGHT_VERSION}, {"slowlight:scene", scene.source},
                     {kFingerprintKey, fingerprint}};
     g_setting_up = false;  // from here on a signal means: deliver what you have
+    Checkpointer checkpointer(checkpoints, state_id);  // makes the directory: checked before any output
     FrameOutputs outputs(out);  // every output is checked before rendering starts
 
     PipelineJob job;
@@ -145,7 +147,6 @@ int render(const RunOptions& o, const std::vector<std::string>& argv) {
         drop_interrupted_sections(outputs, layouts, job.on_disk);
     }
     job.starts = starts;
-    Checkpointer checkpointer(checkpoints, state_id);
     if (checkpointer.enabled()) job.checkpointer = &checkpointer;
     int to_render = 0;
     for (int s = 0; s < plan.sections; ++s)
