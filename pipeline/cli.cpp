@@ -7,6 +7,7 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <unistd.h>
@@ -134,6 +135,15 @@ int render(const RunOptions& o, const std::vector<std::string>& argv) {
     out.exposure = o.exposure;
     out.metadata = {{"slowlight:version", SLOWLIGHT_VERSION}, {"slowlight:scene", scene.source},
                     {kFingerprintKey, fingerprint}};
+    if (!o.preview_path.empty()) {  // checked now: a preview that cannot be written must not stop a render
+        std::filesystem::path dir = std::filesystem::path(o.preview_path).parent_path();
+        std::error_code ec;
+        if (std::filesystem::is_directory(o.preview_path, ec) || !std::filesystem::is_directory(dir.empty() ? "." : dir, ec))
+            throw RuntimeFailure("--preview " + o.preview_path + ": cannot write there (" +
+                                 (std::filesystem::is_directory(o.preview_path, ec) ? std::string("a directory")
+                                                                                     : "no directory " + dir.string()) +
+                                 ")");
+    }
     g_setting_up = false;  // from here on a signal means: deliver what you have
     Checkpointer checkpointer(checkpoints, state_id);  // makes the directory: checked before any output
     FrameOutputs outputs(out);  // every output is checked before rendering starts

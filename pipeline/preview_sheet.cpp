@@ -1,6 +1,8 @@
 #include "pipeline/preview_sheet.h"
 
 #include <algorithm>
+#include <cstdio>
+#include <exception>
 #include <vector>
 
 #include "stages/output/png_io.h"
@@ -47,7 +49,13 @@ void PreviewSheet::write(const SectionBuffer& buffer, std::optional<double> expo
     }
     std::vector<uint8_t> srgb(sheet.size());
     tone_map_srgb8(sheet.data(), sw, sh, exposure.value_or(exposure_from_steady(sheet.data(), sw, sh)), srgb.data());
-    write_png(path_, sw, sh, srgb.data());  // through a temporary sibling and a rename
+    try {
+        write_png(path_, sw, sh, srgb.data());  // through a temporary sibling and a rename
+    } catch (const std::exception& e) {  // a look at the render is not worth the render
+        std::fprintf(stderr, "warning: --preview: %s\n", e.what());
+        path_.clear();
+        return;
+    }
     ++writes_;
     last_section_ = l.index;
     last_ = std::chrono::steady_clock::now();
