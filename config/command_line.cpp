@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cmath>
 
+#include "config/duration.h"
 #include "config/limits.h"
 #include "config/nearest_name.h"
 #include "config/parse_scene.h"
@@ -170,8 +171,33 @@ const Option kOptions[] = {
      "also write the time-resolved stack (frames+2, height, width, RGB float32) as NumPy .npy",
      [](RunOptions& r, std::string_view f, std::string_view v) { r.cube_path = path_value(f, v); }},
     {kRender, "--resume", "", "",
-     "with --exr-dir: keep the sections whose frames a render of the same settings left there",
+     "continue an interrupted render: frames from --exr-dir, the rest from its checkpoint",
      [](RunOptions& r, std::string_view, std::string_view) { r.resume = true; }},
+    {kRender, "--checkpoint", "", "DIR",
+     "save the section in progress to DIR now and then and at Ctrl-C (default: --exr-dir)",
+     [](RunOptions& r, std::string_view f, std::string_view v) { r.checkpoint_dir = path_value(f, v); }},
+    {kRender, "--checkpoint-every", "", "TIME",
+     "time between checkpoints: 90s, 20m, 2h (default 5m; 0: every pass; off: Ctrl-C only)",
+     [](RunOptions& r, std::string_view f, std::string_view v) {
+         if (v == "off" || v == "never") {
+             r.checkpoint_every = -1.0;
+             return;
+         }
+         std::optional<double> d = parse_duration(v);
+         if (!d) bad_value(f, "must be a duration such as 90s, 20m, 2h or off, got '" + printable(v) + "'");
+         r.checkpoint_every = *d;
+     }},
+    {kRender, "--time-limit", "", "TIME",
+     "render passes until TIME (90s, 20m, 2h) is spent; --passes stays the upper bound",
+     [](RunOptions& r, std::string_view f, std::string_view v) {
+         std::optional<double> d = parse_duration(v);
+         if (!d || !(*d > 0))
+             bad_value(f, "must be a duration > 0 such as 90s, 20m or 2h, got '" + printable(v) + "'");
+         r.time_limit = *d;
+     }},
+    {kRender, "--preview", "", "FILE.png",
+     "while rendering, a contact sheet of the section in progress, rewritten every few seconds",
+     [](RunOptions& r, std::string_view f, std::string_view v) { r.preview_path = path_value(f, v); }},
     {kRender | kRetime, "--tone", "", "CURVE",
      "linear (default: clip at white), filmic (soft shoulder) or log (the darks lifted)",
      [](RunOptions& r, std::string_view f, std::string_view v) {
@@ -380,7 +406,8 @@ RunOptions parse_command_line(int argc, const char* const* argv) {
         fail("info needs a scene file: slowlight info SCENE.json");
     if (r.command == RunOptions::Command::Retime && !have_scene)
         fail("retime needs a cube file: slowlight retime CUBE.npy -o out.mp4 [--emission ...]");
-    if (r.resume && r.exr_dir.empty()) fail("--resume needs --exr-dir, where the finished frames are");
+    if (r.resume && r.exr_dir.empty() && r.checkpoint_dir.empty())
+        fail("--resume needs --exr-dir or --checkpoint, where the interrupted render left its state");
     if (r.exposure && (r.exposure_percentile || r.exposure_follow))
         fail("--exposure fixes the exposure; it cannot be combined with --exposure-percentile or --exposure-follow");
     return r;

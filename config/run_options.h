@@ -42,6 +42,11 @@ struct RunOptions {
     int threads = 0;  // 0: all cores
     int ranks = 0;    // --ranks (info: plan for N MPI ranks); under MPI, the ranks running
     bool progress = true;  // shown only when stderr is a terminal
+    // Never lose a long render (docs/checkpoints.md). checkpoint_dir empty: --exr-dir, if any.
+    std::string checkpoint_dir;
+    std::optional<double> checkpoint_every;  // seconds; < 0: only at an interrupt
+    std::optional<double> time_limit;        // seconds of wall time for the whole run
+    std::string preview_path;                // --preview FILE.png: contact sheet while rendering
     RenderOverrides overrides;
 };
 

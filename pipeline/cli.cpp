@@ -8,6 +8,7 @@
 #include <csignal>
 #include <cstdio>
 #include <fstream>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <unistd.h>
@@ -19,12 +20,17 @@
 #include "pipeline/distributed/rank_start.h"
 #include "config/text_util.h"
 #include "pipeline/exposure.h"
+#include "config/duration.h"
+#include "pipeline/checkpoint.h"
 #include "pipeline/frame_outputs.h"
 #include "pipeline/memory_plan.h"
 #include "pipeline/output_checks.h"
 #include "pipeline/progress.h"
 #include "pipeline/render_pipeline.h"
+#include "pipeline/preview_sheet.h"
 #include "pipeline/resume.h"
+#include "pipeline/resume_checkpoints.h"
+#include "pipeline/resume_command.h"
 #include "pipeline/retime.h"
 #include "pipeline/run_stats.h"
 #include "pipeline/settings_hash.h"
@@ -33,17 +39,30 @@
 #include "pipeline/scene_info.h"
 #include "core/import/model_scene.h"
 #include "core/import/resolve_imports.h"
+#include "pipeline/time_budget.h"
 
 namespace sl {
 namespace {
 
 std::atomic<bool> g_cancel{false};
+// Until outputs are opened nothing has been written, so a signal then ends the run at once.
+std::atomic<bool> g_setting_up{true};
 
 extern "C" void on_signal(int) {
+    if (g_setting_up.load()) {
+        static const char msg[] = "slowlight: interrupted during set-up; nothing written\n";
+        ssize_t ignored = write(STDERR_FILENO, msg, sizeof msg - 1);
+        (void)ignored;
+        _exit(130);
+    }
     if (g_cancel.exchange(true)) {  // a second signal: stop at once, leaving no temporary behind
         remove_live_temporaries();
         _exit(130);
     }
+    static const char msg[] = "\nslowlight: interrupted: ending the pass in flight, then saving the section and "
+                              "writing its frames (interrupt again to quit at once)\n";
+    ssize_t ignored = write(STDERR_FILENO, msg, sizeof msg - 1);
+    (void)ignored;
 }
 
 // Several ranks (MPI): the exchange, and whether the ranks agreed to start rendering (before
@@ -70,6 +89,22 @@ extern "C" void on_launcher_signal(int sig) {
         (void)ignored;
     }
     _exit(128 + sig);
+}
+
+// "frames 0-23 (sections 1-2, section 2 from 12 of 64 passes) to out.mp4 and exr/"
+std::string what_was_written(const PipelineStats& stats, const FrameOutputs& outputs, const RunOptions& o, int passes) {
+    if (outputs.frames_written == 0) return "nothing written";
+    std::string where;
+    auto add = [&](const std::string& w) { where += (where.empty() ? "" : ", ") + w; };
+    if (!o.output.empty()) add(o.output == "-" ? std::string("stdout") : o.output);
+    if (!o.exr_dir.empty()) add(o.exr_dir + "/");
+    if (!o.png_dir.empty()) add(o.png_dir + "/");
+    std::string text = "wrote frames 0-" + std::to_string(outputs.frames_written - 1);
+    if (stats.interrupted_section >= 0)
+        text += " (section " + std::to_string(stats.interrupted_section + 1) + " from " +
+                std::to_string(stats.passes_per_section[stats.interrupted_section]) + " of " + std::to_string(passes) +
+                " passes)";
+    return text + (where.empty() ? " (to no output: none was asked for)" : " to " + where);
 }
 
 // Refuse up front what could only end in running out of memory.
@@ -115,8 +150,11 @@ SceneDesc load_scene(const RunOptions& o) {
     return scene;
 }
 
-int render(RunOptions o) {
+int render(RunOptions o, const std::vector<std::string>& argv) {
     auto t0 = std::chrono::steady_clock::now();
+    g_setting_up = true;
+    std::signal(SIGINT, on_signal);
+    std::signal(SIGTERM, on_signal);
     RankExchange* ex = g_ranks.ex;
     const bool root = g_ranks.root();
     if (ex) {
@@ -125,6 +163,10 @@ int render(RunOptions o) {
                              std::to_string(ex->ranks()) + " MPI ranks");
         // Resuming needs the checkpoint of every rank's pixels: not yet.
         if (o.resume) throw InputError("command line: --resume is not supported yet when several MPI ranks render");
+        // Each needs every rank's pixels or an agreed pass count: not yet either.
+        if (!o.checkpoint_dir.empty() || o.time_limit || !o.preview_path.empty())
+            throw InputError("command line: --checkpoint, --time-limit and --preview are not supported yet when several "
+                             "MPI ranks render");
         o.ranks = ex->ranks();
     } else if (o.ranks > 1) {
         throw InputError("command line: --ranks " + std::to_string(o.ranks) +
@@ -147,6 +189,31 @@ int render(RunOptions o) {
     const std::string fingerprint = settings_fingerprint(scene, plan.sections, o.strategy);
 
     require_an_output(o);  // after every check of the input, before any work
+
+    // Checkpoints: in --checkpoint DIR, or else in --exr-dir, where --resume looks anyway. Not
+    // with several ranks yet (a rank holds a share of the pixels; docs/distributed.md).
+    const std::string again = resume_command(argv);
+    CheckpointSettings checkpoints;
+    if (!ex) {
+        checkpoints.dir = !o.checkpoint_dir.empty() ? o.checkpoint_dir : o.exr_dir;
+        checkpoints.flag = !o.checkpoint_dir.empty() ? "--checkpoint" : "--exr-dir";
+    }
+    checkpoints.every = o.checkpoint_every.value_or(kDefaultCheckpointEvery);
+    checkpoints.keep_finished = o.exr_dir.empty() && plan.sections > 1;
+    SectionStateId state_id;
+    state_id.program_version = SLOWLIGHT_VERSION;
+    state_id.fingerprint = fingerprint;
+    state_id.sections = plan.sections;
+    state_id.passes_target = scene.render.passes;
+    state_id.width = ctx.width;
+    state_id.height = ctx.height;
+    const std::vector<SectionLayout> layouts = plan_sections(ctx, plan, o.strategy);
+    std::vector<SectionStart> starts;
+    if (o.resume)
+        starts = checkpoints_to_resume(checkpoints.dir, state_id, layouts, ctx.has_ambient());
+    else if (!ex)
+        refuse_existing_checkpoints(checkpoints.dir, again);
+
     OutputSettings out;
     out.video = o.output;
     out.exr_dir = o.exr_dir;
@@ -164,6 +231,17 @@ int render(RunOptions o) {
     if (!o.cube_path.empty()) out.emitter_runs = mask_runs(emitter_pixels(ctx));
     out.metadata = {{"slowlight:version", SLOWLIGHT_VERSION}, {"slowlight:scene", scene.source},
                     {kFingerprintKey, fingerprint}};
+    if (!o.preview_path.empty()) {  // checked now: a preview that cannot be written must not stop a render
+        std::filesystem::path dir = std::filesystem::path(o.preview_path).parent_path();
+        std::error_code ec;
+        if (std::filesystem::is_directory(o.preview_path, ec) || !std::filesystem::is_directory(dir.empty() ? "." : dir, ec))
+            throw RuntimeFailure("--preview " + o.preview_path + ": cannot write there (" +
+                                 (std::filesystem::is_directory(o.preview_path, ec) ? std::string("a directory")
+                                                                                     : "no directory " + dir.string()) +
+                                 ")");
+    }
+    g_setting_up = false;  // from here on a signal means: deliver what you have
+    Checkpointer checkpointer(checkpoints, state_id);  // makes the directory: checked before any output
     // Only rank 0 writes; the others assemble their pixels and send them to it.
     FrameOutputs outputs(root ? out : OutputSettings{});  // every output is checked before rendering starts
 
@@ -174,12 +252,26 @@ int render(RunOptions o) {
     job.exposure_rule.percentile = o.exposure_percentile;
     job.exposure_rule.follow = o.exposure_follow;
     job.fingerprint = fingerprint;
-    if (o.resume)
-        job.on_disk = sections_on_disk(outputs, plan_sections(ctx, plan, o.strategy), fingerprint, ctx.width, ctx.height);
+    if (o.resume && !o.exr_dir.empty()) {
+        job.on_disk = sections_on_disk(outputs, layouts, fingerprint, ctx.width, ctx.height);
+        drop_interrupted_sections(outputs, layouts, job.on_disk);
+    }
+    job.starts = starts;
+    if (checkpointer.enabled()) job.checkpointer = &checkpointer;
+    int to_render = 0;
+    for (int s = 0; s < plan.sections; ++s)
+        to_render += !(s < static_cast<int>(job.on_disk.size()) && job.on_disk[s]) &&
+                     !(s < static_cast<int>(starts.size()) && starts[s].finished);
+    TimeBudget budget = o.time_limit ? TimeBudget(*o.time_limit, t0, to_render) : TimeBudget();
+    if (budget.limited()) job.budget = &budget;
+    PreviewSheet preview(ex ? std::string() : o.preview_path, scene.emission.mode, ctx.pulse_buckets, ctx.width,
+                         ctx.height);
+    if (preview.enabled()) job.preview = &preview;
     if (ex) {  // from here on every rank renders, or none does
         const int status = agree_to_start(*ex, 0, "");
         if (status != 0) return status;
         g_ranks.started = true;
+        std::signal(SIGTERM, on_launcher_signal);
     }
     if (root)
         std::fprintf(stderr, "slowlight: %dx%d, %d frames, %d passes x %lld photons, %d section%s%s; buckets %s per section%s, about %s fixed\n",
@@ -191,19 +283,31 @@ int render(RunOptions o) {
                      format_bytes(plan.fixed_overhead_bytes).c_str());
     double setup = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
-    std::signal(SIGINT, on_signal);
-    std::signal(SIGTERM, ex ? on_launcher_signal : on_signal);
-    ProgressBar bar(o.progress && root, plan.sections, scene.render.passes);
+    ProgressBar bar(o.progress && root, plan.sections, scene.render.passes, scene.render.alpha);
+    for (int s = 0; s < plan.sections; ++s)
+        if ((s < static_cast<int>(job.on_disk.size()) && job.on_disk[s]) || (s < static_cast<int>(starts.size()) && starts[s].finished))
+            bar.skip_section(s);
+    if (budget.limited())
+        bar.set_deadline(*o.time_limit - std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    job.log = [&](const std::string& line) { if (root) bar.message(line); };
+    job.section_started = [&](int s, int p) { bar.section_started(s, p); };
+    job.full_pass_seconds = [&](double t, int n) { bar.expect_full_pass(t, n); };
+    job.passes_fixed = [&](int n) { bar.set_passes(n); };
     PipelineStats stats = run_pipeline(job, outputs, [&](int s, int p) { bar.update(s, p); }, g_cancel);
+    bar.finish();
     if (ex && root)
         std::fprintf(stderr, "slowlight: %d MPI ranks; rank 0 received %s with the passes (%s per pass per rank) and %s of frames\n",
                      ex->ranks(), format_bytes(stats.exchanged_received[0]).c_str(),
                      format_bytes(stats.exchanged_received[0] / static_cast<uint64_t>(std::max(1, stats.passes_run))).c_str(),
                      format_bytes(stats.exchanged_received[1]).c_str());
-    if (stats.sections_resumed > 0)
+    if (root && stats.sections_resumed > 0)
         std::fprintf(stderr, "slowlight: resumed %d of %d sections from %s\n", stats.sections_resumed, plan.sections,
-                     o.exr_dir.c_str());
-    bar.finish();
+                     (o.exr_dir.empty() ? checkpoints.dir : o.exr_dir).c_str());
+    if (root && budget.limited() && !stats.interrupted) {
+        int reached = budget.passes().value_or(scene.render.passes);
+        std::fprintf(stderr, "slowlight: time limit %s: %d pass%s per section (--passes %d)\n",
+                     format_duration(*o.time_limit).c_str(), reached, reached == 1 ? "" : "es", scene.render.passes);
+    }
     auto tf = std::chrono::steady_clock::now();
     outputs.finish();
     double output_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - tf).count();
@@ -218,13 +322,35 @@ int render(RunOptions o) {
         summary.exposure = outputs.exposure().value_or(1.0);
         summary.strategy = o.strategy;
         summary.threads = o.threads > 0 ? o.threads : tbb::info::default_concurrency();
+        summary.time_limit = o.time_limit.value_or(0);
+        summary.checkpoint_dir = checkpointer.enabled() ? checkpoints.dir : "";
+        Checkpointer::Totals ct = checkpointer.totals();
+        summary.checkpoint_writes = ct.writes;
+        summary.checkpoint_bytes = ct.last_bytes;
+        summary.checkpoint_seconds = ct.seconds;
+        summary.checkpoint_longest = ct.longest;
+        summary.preview_writes = preview.writes();
         summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         write_stats_json(o.stats_path, summary);
     }
     if (stats.interrupted) {
-        if (root) std::fprintf(stderr, "slowlight: interrupted; %lld frames written\n", static_cast<long long>(outputs.frames_written));
+        if (!root) return 130;
+        std::string where = stats.interrupted_section >= 0
+                                ? "in section " + std::to_string(stats.interrupted_section + 1) + "/" + std::to_string(plan.sections)
+                                : std::string("before a section's first pass");
+        std::fprintf(stderr, "slowlight: interrupted %s; %s\n", where.c_str(),
+                     what_was_written(stats, outputs, o, scene.render.passes).c_str());
+        if (checkpointer.enabled())
+            std::fprintf(stderr, "slowlight: %s; to continue: %s\n",
+                         stats.interrupted_checkpoint.empty() ? ("finished frames are in " + o.exr_dir).c_str()
+                                                              : ("state saved in " + stats.interrupted_checkpoint).c_str(),
+                         again.c_str());
+        else
+            std::fprintf(stderr, "slowlight: nothing saved to resume from (give --checkpoint DIR or --exr-dir to make a "
+                                 "render resumable)\n");
         return 130;
     }
+    checkpointer.remove_all();  // a finished render needs none of them
     if (!root) return 0;  // rank 0 speaks for the job
     if (stats.steady_black)
         std::fprintf(stderr,
@@ -286,7 +412,7 @@ int run_cli(int argc, char** argv) {
         if (o.threads > 0)
             threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, o.threads);
         if (o.command == RunOptions::Command::Retime) return retime(o);
-        return render(o);
+        return render(o, std::vector<std::string>(argv, argv + argc));
     } catch (const InputError& e) {
         return fail(2, e.what());
     } catch (const std::bad_alloc&) {

@@ -102,7 +102,7 @@ std::string FrameOutputs::exr_steady_path() const {
     return (std::filesystem::path(settings_.exr_dir) / "steady.exr").string();
 }
 
-void FrameOutputs::write_frame(int index, const std::vector<float>& rgb, bool on_disk) {
+void FrameOutputs::write_frame(int index, const std::vector<float>& rgb, bool on_disk, const Metadata& extra) {
     const int w = settings_.width, h = settings_.height;
     // The linear EXR and the tone-mapped outputs read the same frame and nothing else: the EXR
     // is written on another thread while this one tone-maps and encodes, so a run that asks
@@ -111,6 +111,7 @@ void FrameOutputs::write_frame(int index, const std::vector<float>& rgb, bool on
     if (!settings_.exr_dir.empty() && !on_disk)
         exr.run([&] {
             std::map<std::string, std::string> meta = settings_.metadata;
+            for (const auto& [k, v] : extra) meta[k] = v;
             double delta = (settings_.end_ns - settings_.start_ns) / std::max(1, settings_.frames);
             meta[kFrameIndexKey] = std::to_string(index);
             meta[kChecksumKey] = pixel_checksum(rgb.data(), rgb.size());  // --resume verifies it
@@ -140,11 +141,12 @@ void FrameOutputs::write_frame(int index, const std::vector<float>& rgb, bool on
     ++frames_written;
 }
 
-void FrameOutputs::write_steady(const std::vector<float>& rgb) {
+void FrameOutputs::write_steady(const std::vector<float>& rgb, const Metadata& extra) {
     const int w = settings_.width, h = settings_.height;
     if (!settings_.exr_dir.empty()) {
         std::map<std::string, std::string> meta = settings_.metadata;
         meta[kChecksumKey] = pixel_checksum(rgb.data(), rgb.size());
+        for (const auto& [k, v] : extra) meta[k] = v;
         seconds_exr += timed([&] { write_exr(exr_steady_path(), w, h, rgb.data(), meta); });
     }
     if (!settings_.png_dir.empty()) {

@@ -46,13 +46,16 @@ public:
     bool wants_cube() const { return cube_ != nullptr; }
 
     // `on_disk`: the EXR is already there (a resumed section), so only the rest is written.
-    void write_frame(int index, const std::vector<float>& rgb, bool on_disk = false);
-    void write_steady(const std::vector<float>& rgb);
+    // `extra`: more EXR header entries for this frame (e.g. the passes it got).
+    using Metadata = std::map<std::string, std::string>;
+    void write_frame(int index, const std::vector<float>& rgb, bool on_disk = false, const Metadata& extra = {});
+    void write_steady(const std::vector<float>& rgb, const Metadata& extra = {});
     void write_cube_plane(const std::vector<float>& rgb);
     void finish();  // closes the video so that it plays, and the cube
 
     std::string exr_frame_path(int index) const;
     std::string exr_steady_path() const;
+    const std::string& exr_dir() const { return settings_.exr_dir; }
 
     // "wrote out.mp4 (48 frames), exr/ (48 EXR frames + steady.exr)": what finish() left behind.
     std::string summary() const;

@@ -16,6 +16,7 @@
 #include "pipeline/resume.h"
 #include "stages/output/exr_frame_check.h"
 #include "stages/output/exr_io.h"
+#include "pipeline/resume_checkpoints.h"
 #include "stages/render/frame_assembly.h"
 
 namespace sl {
@@ -29,7 +30,9 @@ struct Section {
     SectionLayout layout;
     bool last = false;
     bool from_disk = false;  // resumed: its frames are read back from the EXR files
-    bool complete = true;    // false when interrupted: its frames are never written
+    bool complete = true;    // false when never started (or not one pass done): nothing written
+    bool partial = false;    // interrupted: written from the passes it had
+    int passes = 0;          // passes its frames got
     SectionRun run;
     std::optional<FrameAssembler> assembler;
 };
@@ -89,8 +92,13 @@ void measure_buffer(const SectionBuffer& buffer, const RenderContext& ctx, Expos
 // The preview's passes: an eighth of the render's, at least 4 (or all, if fewer).
 int preview_passes(int passes) { return std::min(passes, std::max(4, passes / 8)); }
 
-ExposurePlan exposure_from_preview(const RenderContext& ctx, const ExposureRule& rule, SectionCounters& counters) {
+// `stop(passes done)` ends it early (an interrupt, or --time-limit's share spent).
+ExposurePlan exposure_from_preview(const RenderContext& ctx, const ExposureRule& rule, SectionCounters& counters,
+                                   const std::function<bool(int)>& stop, int& passes_done) {
     const int passes = preview_passes(ctx.scene.render.passes);
+    int done = 0;
+    auto on_pass = [&](int p) { done = passes_done = p; };
+    auto cancelled = [&] { return stop(done); };
     const int64_t photons = ctx.scene.render.photons_per_pass;
     const EmissionMode mode = ctx.scene.emission.mode;
     if (mode == EmissionMode::Pulse || rule.follow) {
@@ -102,7 +110,7 @@ ExposurePlan exposure_from_preview(const RenderContext& ctx, const ExposureRule&
         RenderContext preview(small);
         preview.exchange = ctx.exchange;
         SectionLayout l = make_section(preview.timeline, mode, preview.pulse_buckets, 1, 0);
-        SectionRun run = render_section(preview, l, passes, photons, counters);
+        SectionRun run = render_section(preview, l, passes, photons, counters, on_pass, cancelled);
         ExposureMeter meter(mode, rule, emitter_pixels(preview));
         measure_buffer(*run.buffer, preview, meter);
         return meter.decide();
@@ -111,7 +119,7 @@ ExposurePlan exposure_from_preview(const RenderContext& ctx, const ExposureRule&
     l.first_frame = l.end_frame = ctx.timeline.frames;
     l.first_bucket = l.end_frame;
     l.full_paths = true;
-    SectionRun run = render_section(ctx, l, passes, photons, counters);
+    SectionRun run = render_section(ctx, l, passes, photons, counters, on_pass, cancelled);
     ExposureMeter meter(mode, rule, emitter_pixels(ctx));
     measure_buffer(*run.buffer, ctx, meter);
     return meter.decide();
@@ -126,6 +134,14 @@ ExposurePlan exposure_from_disk(const RenderContext& ctx, const ExposureRule& ru
         for (int f = 0; f < ctx.timeline.frames; ++f)
             meter.add_frame(f, read_exr(outputs.exr_frame_path(f)).rgb.data(), ctx.pixels());
     return meter.decide();
+}
+
+// What an EXR of this section says about itself: the passes it got, and whether an interrupt
+// cut the section short (then --resume renders it further instead of keeping it).
+FrameOutputs::Metadata frame_metadata(const Section& s) {
+    FrameOutputs::Metadata m{{kPassesKey, std::to_string(s.passes)}};
+    if (s.partial) m[kInterruptedKey] = "1";
+    return m;
 }
 
 }  // namespace
@@ -169,20 +185,36 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameOutputs& outputs, const 
         if (ex) gather_image(*ex, ctx.pixels(), rgb);
     };
 
+    auto start_of = [&](int s) { return s < static_cast<int>(job.starts.size()) ? job.starts[s] : SectionStart{}; };
+    auto log = [&](const std::string& line) {
+        if (!root) return;
+        if (job.log) job.log(line);
+        else std::fprintf(stderr, "%s\n", line.c_str());
+    };
+    stats.passes_per_section.assign(static_cast<size_t>(plan.sections), 0);
+
     // The exposure, before any frame is encoded. With one section the section itself provides it
     // (below); a finished render resumed from disk is measured on the very frames it wrote, and
-    // more sections on a preview, which is deterministic: a resumed run exposes as the first did.
+    // more sections (or one finished in its checkpoint) on a preview, which is deterministic: a
+    // resumed run exposes as the first did.
+    int preview_passes = 0;
     if (exposure_pending && plan.sections == 1 && resumed(0)) {
         if (root) outputs.set_exposure_plan(exposure_from_disk(ctx, job.exposure_rule, outputs));
         exposure_pending = false;
-    } else if (exposure_pending && plan.sections > 1) {
+    } else if (exposure_pending && (plan.sections > 1 || start_of(0).finished)) {
         auto t0 = Clock::now();
-        const ExposurePlan e = exposure_from_preview(ctx, job.exposure_rule, counters);
+        // Stopped by an interrupt or, with --time-limit, after a sixteenth of the budget.
+        auto stop = [&](int done) { return cancel.load() || (job.budget && job.budget->preview_over(done)); };
+        const ExposurePlan e = exposure_from_preview(ctx, job.exposure_rule, counters, stop, preview_passes);
         if (root) outputs.set_exposure_plan(e);
         exposure_pending = false;
-        stats.passes_run += preview_passes(passes);
+        stats.passes_run += preview_passes;
         malloc_trim(0);  // the preview's photon map and buffer: back to the system
         stats.exposure_pass = since(t0);
+        if (preview_passes > 0 && mode == EmissionMode::Constant) {  // a full-resolution, full-path pass
+            if (job.budget) job.budget->expect_later_pass(stats.exposure_pass / preview_passes);
+            if (job.full_pass_seconds) job.full_pass_seconds(stats.exposure_pass / preview_passes, preview_passes);
+        }
     }
 
     flow::graph g;
@@ -202,26 +234,82 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameOutputs& outputs, const 
         if (resumed(index)) {
             s->from_disk = true;
             ++stats.sections_resumed;
+            s->passes = passes;
+            stats.passes_per_section[index] = passes;
             return s;
         }
         if (stopped()) {  // taken from the queue just before the interrupt: not started
             s->complete = false;
             return s;
         }
-        if (root)
-            std::fprintf(stderr, "slowlight: section %d/%d, frames %d-%d: %s of time buckets%s\n", index + 1,
-                         plan.sections, s->layout.first_frame, s->layout.end_frame - 1,
-                         format_bytes(SectionBuffer::bytes_needed(
-                                          ex ? PixelShare{0, ex->ranks(), ctx.pixels()}.count() : ctx.pixels(),
-                                          s->layout.slots(), ctx.has_ambient()))
-                             .c_str(),
-                         ex ? " per rank" : "");
-        s->run = render_section(ctx, s->layout, passes, photons_per_pass, counters,
-                                [&](int pass) { if (progress) progress(index, pass); },
-                                [&] { return cancel.load(); });
-        s->complete = s->run.buffer->passes_done == passes;
-        if (!s->complete) agreed_stop = true;
-        stats.passes_run += s->run.buffer->passes_done;
+        const SectionStart start = start_of(index);
+        std::unique_ptr<SectionBuffer> buffer;
+        if (start.from_checkpoint) {
+            buffer = load_section_state(start.path, job.checkpointer->id_for(index), s->layout, ctx.has_ambient());
+            ++stats.sections_resumed;
+        } else {
+            buffer = ex ? std::make_unique<SectionBuffer>(PixelShare{ex->rank(), ex->ranks(), ctx.pixels()}, s->layout,
+                                                          ctx.initial_radius, ctx.has_ambient())
+                        : std::make_unique<SectionBuffer>(ctx.pixels(), s->layout, ctx.initial_radius, ctx.has_ambient());
+        }
+        SectionBuffer* live = buffer.get();
+        char line[256];
+        std::snprintf(line, sizeof line, "slowlight: section %d/%d, frames %d-%d: %s of time buckets%s%s", index + 1,
+                      plan.sections, s->layout.first_frame, s->layout.end_frame - 1,
+                      format_bytes(SectionBuffer::bytes_needed(ex ? PixelShare{0, ex->ranks(), ctx.pixels()}.count()
+                                                                  : ctx.pixels(),
+                                                               s->layout.slots(), ctx.has_ambient()))
+                          .c_str(),
+                      ex ? " per rank" : "",
+                      start.from_checkpoint ? (start.finished ? "; finished, from its checkpoint"
+                                                              : ("; from its checkpoint at pass " +
+                                                                 std::to_string(start.passes_done)).c_str())
+                                            : "");
+        log(line);
+        bool by_interrupt = false;
+        if (start.finished) {
+            s->run.buffer = std::move(buffer);
+        } else {
+            if (job.budget) job.budget->section_started(live->passes_done);
+            if (job.section_started) job.section_started(index, live->passes_done);
+            auto on_pass = [&](int pass) {
+                if (progress) progress(index, pass);
+                if (job.budget) job.budget->pass_done(pass);
+                if (job.checkpointer) job.checkpointer->after_pass(*live);
+                if (job.preview) job.preview->after_pass(*live, outputs.exposure());
+            };
+            auto stop = [&] {
+                if (cancel.load()) return by_interrupt = true;
+                return job.budget != nullptr && job.budget->stop_before_pass(live->passes_done);
+            };
+            s->run = render_section(ctx, s->layout, passes, photons_per_pass, counters, on_pass, stop, std::move(buffer),
+                                    &cancel);
+        }
+        s->passes = s->run.buffer->passes_done;
+        // (a pass abandoned while its photons were traced ends the section without asking `stop`)
+        if (!start.finished && cancel.load() && s->passes < passes) by_interrupt = true;
+        if (by_interrupt) {
+            // Every pass is a picture: the frames are written from the passes done, and the
+            // state is saved so that --resume continues from here.
+            s->partial = true;
+            s->complete = s->passes > 0;
+            if (job.checkpointer && s->passes > 0) stats.interrupted_checkpoint = job.checkpointer->save(*s->run.buffer, false);
+            if (s->complete) stats.interrupted_section = index;
+        } else {
+            if (job.budget && !start.finished) {
+                bool first_decision = !job.budget->passes();
+                job.budget->section_finished(s->passes, false);
+                if (first_decision && job.budget->passes() && job.passes_fixed) job.passes_fixed(*job.budget->passes());
+            }
+            // Without --exr-dir a finished section's frames exist nowhere else until the video
+            // is closed: keep its final state so that --resume can write them again.
+            if (job.checkpointer && job.checkpointer->settings().keep_finished && !s->last && !start.finished)
+                job.checkpointer->save(*s->run.buffer, true);
+        }
+        if (s->complete) stats.passes_per_section[index] = s->passes;
+        if (by_interrupt) agreed_stop = true;  // with ranks: they all stopped after the same pass
+        if (!start.finished) stats.passes_run += s->passes - start.passes_done;
+        if (job.preview && s->complete && !start.finished) job.preview->write(*s->run.buffer, outputs.exposure());
         stats.render.camera += s->run.times.camera;
         stats.render.photons += s->run.times.photons;
         stats.render.gather += s->run.times.gather;
@@ -232,7 +320,7 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameOutputs& outputs, const 
     });
     using Split = flow::multifunction_node<SectionPtr, std::tuple<FrameJob>>;
     Split split(g, flow::serial, [&](const SectionPtr& s, Split::output_ports_type& out) {
-        if (!s->complete) return;  // interrupted: a half-converged section is not written
+        if (!s->complete) return;  // never started: nothing to write
         for (int f = s->layout.first_frame; f < s->layout.end_frame; ++f) std::get<0>(out).try_put(FrameJob{s, f});
     });
     flow::queue_node<FrameJob> frame_queue(g);
@@ -294,8 +382,8 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameOutputs& outputs, const 
         auto t0 = Clock::now();
         if (root) {
             if (img.exposure) outputs.set_exposure_plan(*img.exposure);
-            if (!img.steady.empty()) outputs.write_steady(img.steady);
-            outputs.write_frame(img.frame, img.rgb, img.section->from_disk);
+            if (!img.steady.empty()) outputs.write_steady(img.steady, frame_metadata(*img.section));
+            outputs.write_frame(img.frame, img.rgb, img.section->from_disk, frame_metadata(*img.section));
         }
         if (!img.before.empty()) outputs.write_cube_plane(img.before);
         if (!img.bucket.empty()) outputs.write_cube_plane(img.bucket);
@@ -303,7 +391,10 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameOutputs& outputs, const 
         stats.writing += since(t0);
         bool last = img.frame + 1 == img.section->layout.end_frame;
         if (last) {  // free the section's buckets before another section may allocate its own
-            ++stats.sections_done;
+            if (!img.section->partial) ++stats.sections_done;
+            // Its frames are in --exr-dir now: they, not the checkpoint, are what --resume reads.
+            if (job.checkpointer && !img.section->partial && !outputs.exr_dir().empty())
+                job.checkpointer->remove(img.section->layout.index);
             img.section->assembler.reset();
             img.section->run.buffer.reset();
             malloc_trim(0);  // hand the section's freed working memory back before the next one grows

@@ -7,7 +7,9 @@
 //
 // Frames leave in order. A section's time buckets are freed as soon as its last frame is
 // written; with two sections alive the next section renders while this one is encoded.
-// Interrupted, the section being rendered is dropped and the frames in hand are written.
+// Interrupted, the pass in flight finishes, the section in progress is saved (checkpoint) and
+// every one of its frames is assembled from the passes completed and written after the
+// finished sections; sections that never started are not written.
 #include <atomic>
 #include <functional>
 #include <string>
@@ -16,7 +18,11 @@
 #include "config/run_options.h"
 #include "pipeline/exposure.h"
 #include "pipeline/frame_outputs.h"
+#include "pipeline/checkpoint.h"
 #include "pipeline/memory_plan.h"
+#include "pipeline/preview_sheet.h"
+#include "pipeline/resume_checkpoints.h"
+#include "pipeline/time_budget.h"
 #include "stages/render/render_context.h"
 #include "stages/render/section_renderer.h"
 
@@ -35,6 +41,9 @@ struct PipelineStats {
     uint64_t exchanged_sent[2] = {0, 0}, exchanged_received[2] = {0, 0};
     double photon_transfer_seconds = 0;  // rank 0's time moving photon records (not waiting)
     bool steady_black = false;  // nothing but the emitters themselves reached the camera
+    std::vector<int> passes_per_section;  // passes each section's frames got (0: not written)
+    int interrupted_section = -1;         // the section written from the passes it had, if any
+    std::string interrupted_checkpoint;   // where that section's state was saved ("" if nowhere)
 };
 
 // (section, passes done in it) after every pass.
@@ -47,6 +56,14 @@ struct PipelineJob {
     std::vector<bool> on_disk;  // per section: already rendered (--resume)
     ExposureRule exposure_rule;
     std::string fingerprint;    // of this render's settings: resumed frames must carry it
+    std::vector<SectionStart> starts;  // per section: a checkpoint to continue from (--resume)
+    Checkpointer* checkpointer = nullptr;  // saves the section in progress; null: never
+    TimeBudget* budget = nullptr;          // --time-limit; null: none
+    PreviewSheet* preview = nullptr;       // --preview; null: none
+    std::function<void(const std::string&)> log;               // one line for stderr
+    std::function<void(int section, int passes_done)> section_started;
+    std::function<void(double seconds, int passes)> full_pass_seconds;  // the preview's mean pass
+    std::function<void(int passes)> passes_fixed;              // --time-limit decided the passes
 };
 
 std::vector<SectionLayout> plan_sections(const RenderContext& ctx, const MemoryPlan& plan, Strategy strategy);

@@ -2,6 +2,8 @@
 
 #include <sys/resource.h>
 
+#include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
@@ -57,6 +59,22 @@ void write_stats_json(const std::string& path, const RunSummary& s) {
                                 {"frames_received", p.exchanged_received[1]},
                                 {"photon_grid_seconds", p.render.grid},  // rank 0's, part of photon_passes
                                 {"photon_transfer_seconds", p.photon_transfer_seconds}};
+    // The passes each section's frames got (0: not written); with --time-limit or after an
+    // interrupt they can be fewer than "passes".
+    j["passes_per_section"] = p.passes_per_section;
+    int reached = 0;
+    for (int n : p.passes_per_section)
+        if (n > 0) reached = reached == 0 ? n : std::min(reached, n);
+    j["passes_reached"] = reached;
+    if (p.interrupted_section >= 0) j["interrupted_section"] = p.interrupted_section;
+    if (s.time_limit > 0) j["time_limit_seconds"] = s.time_limit;
+    if (!s.checkpoint_dir.empty())
+        j["checkpoints"] = {{"dir", s.checkpoint_dir},
+                            {"writes", s.checkpoint_writes},
+                            {"bytes_each", s.checkpoint_bytes},
+                            {"seconds_total", s.checkpoint_seconds},
+                            {"seconds_longest", s.checkpoint_longest}};
+    if (s.preview_writes > 0) j["preview_writes"] = s.preview_writes;
     // A device or FIFO (/dev/stdout, a pipe) is written in place, a link through to its target
     // (atomic_file.h): never replaced by a rename.
     const std::string target = temp_sibling(path);

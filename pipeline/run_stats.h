@@ -15,6 +15,11 @@ struct RunSummary {
     double exposure = 1;
     Strategy strategy = Strategy::Single;
     int threads = 0;
+    double time_limit = 0;  // seconds; 0: none
+    std::string checkpoint_dir;
+    int checkpoint_writes = 0, preview_writes = 0;
+    uint64_t checkpoint_bytes = 0;  // of one checkpoint
+    double checkpoint_seconds = 0, checkpoint_longest = 0;
 };
 
 uint64_t peak_rss_bytes();

@@ -106,14 +106,16 @@ uint64_t PhotonMap::bytes() const {
     return b;
 }
 
-void PhotonMap::build(const RenderContext& ctx, const SectionLayout& layout, int pass, int64_t count,
-                      double cell_size, PhotonTraceCounters& counters, VolumePhotonMap* volume) {
-    trace(ctx, layout, pass, count, counters, volume != nullptr);
+bool PhotonMap::build(const RenderContext& ctx, const SectionLayout& layout, int pass, int64_t count,
+                      double cell_size, PhotonTraceCounters& counters, VolumePhotonMap* volume,
+                      const std::atomic<bool>* abandon) {
+    if (!trace(ctx, layout, pass, count, counters, volume != nullptr, abandon)) return false;
     finish(ctx, cell_size, counters, volume);
+    return true;
 }
 
-void PhotonMap::trace(const RenderContext& ctx, const SectionLayout& layout, int pass, int64_t count,
-                      PhotonTraceCounters& counters, bool with_volume) {
+bool PhotonMap::trace(const RenderContext& ctx, const SectionLayout& layout, int pass, int64_t count,
+                      PhotonTraceCounters& counters, bool with_volume, const std::atomic<bool>* abandon) {
     const HomogeneousMedium* medium = ctx.medium ? &*ctx.medium : nullptr;
     const bool volume = medium && with_volume;
     const size_t nbatches = ctx.lights.has_emission() ? static_cast<size_t>((count + kBatch - 1) / kBatch) : 0;
@@ -126,6 +128,7 @@ void PhotonMap::trace(const RenderContext& ctx, const SectionLayout& layout, int
         batch.records.clear();
         batch.received = nullptr;
         batch.volume.clear();
+        if (abandon && abandon->load(std::memory_order_relaxed)) return;
         Rng rng(ctx.scene.render.seed, 2, static_cast<uint64_t>(pass), b);
         PhotonPath path{ctx, layout, batch.records, medium, volume ? &batch.volume : nullptr};
         int64_t n = std::min<int64_t>(kBatch, count - static_cast<int64_t>(b) * kBatch);
@@ -133,6 +136,7 @@ void PhotonMap::trace(const RenderContext& ctx, const SectionLayout& layout, int
         counters.photons.fetch_add(static_cast<uint64_t>(n), std::memory_order_relaxed);
         counters.rays.fetch_add(path.rays, std::memory_order_relaxed);
     });
+    if (abandon && abandon->load()) return false;
     size_t own = 0, own_volume = 0;
     for (size_t b = own_first; b < own_end; ++b) {
         own += batches_[b].records.size();
@@ -141,6 +145,7 @@ void PhotonMap::trace(const RenderContext& ctx, const SectionLayout& layout, int
     counters.stored.fetch_add(own, std::memory_order_relaxed);  // this rank's own records
     if (volume) counters.stored_volume.fetch_add(own_volume, std::memory_order_relaxed);
     if (ex) exchange_batches(*ex, nbatches);
+    return true;
 }
 
 void PhotonMap::finish(const RenderContext& ctx, double cell_size, PhotonTraceCounters& counters,
@@ -156,6 +161,7 @@ void PhotonMap::finish(const RenderContext& ctx, double cell_size, PhotonTraceCo
         for (const Batch& v : batches_) parts.push_back(&v.volume);
         volume->build(parts);
     }
+    return true;
 }
 
 // One all-gather per pass. A rank's message: per own batch its record and volume-photon counts

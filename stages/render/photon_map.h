@@ -33,13 +33,17 @@ class PhotonMap {
 public:
     // Traces `count` photon paths of pass `pass` and builds the grid with the given cell size.
     // With a medium in ctx, paths also scatter in it; its events go to `volume` when given.
-    void build(const RenderContext& ctx, const SectionLayout& layout, int pass, int64_t count,
-               double cell_size, PhotonTraceCounters& counters, VolumePhotonMap* volume = nullptr);
+    // `abandon`, when set during the pass (an interrupt), stops it within a batch of photons; the
+    // map is then incomplete and must not be gathered from (build returns false).
+    bool build(const RenderContext& ctx, const SectionLayout& layout, int pass, int64_t count,
+               double cell_size, PhotonTraceCounters& counters, VolumePhotonMap* volume = nullptr,
+               const std::atomic<bool>* abandon = nullptr);
     // build() in two steps: trace (this rank's batches, then, with ranks, the exchange) needs
     // no radius and touches only the batches, so it may run while a camera pass reads the grid
-    // of the previous pass; finish sorts the batches into the grid (and the volume BVH).
-    void trace(const RenderContext& ctx, const SectionLayout& layout, int pass, int64_t count,
-               PhotonTraceCounters& counters, bool with_volume);
+    // of the previous pass; finish sorts the batches into the grid (and the volume BVH). trace
+    // returns false when abandoned (nothing was exchanged then).
+    bool trace(const RenderContext& ctx, const SectionLayout& layout, int pass, int64_t count,
+               PhotonTraceCounters& counters, bool with_volume, const std::atomic<bool>* abandon = nullptr);
     void finish(const RenderContext& ctx, double cell_size, PhotonTraceCounters& counters, VolumePhotonMap* volume);
 
     size_t size() const { return sorted_.size(); }

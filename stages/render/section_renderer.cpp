@@ -2,6 +2,7 @@
 
 #include <tbb/flow_graph.h>
 
+#include <atomic>
 #include <chrono>
 
 #include "stages/render/passes_on_ranks.h"
@@ -17,20 +18,22 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 
 SectionRun render_section(const RenderContext& ctx, const SectionLayout& layout, int passes,
                           int64_t photons_per_pass, SectionCounters& counters,
-                          const PassCallback& on_pass, const std::function<bool()>& cancelled) {
+                          const PassCallback& on_pass, const std::function<bool()>& cancelled,
+                          std::unique_ptr<SectionBuffer> resume_from, const std::atomic<bool>* abandon) {
     namespace flow = tbb::flow;
     SectionRun run;
-    RankExchange* ex = ctx.exchange;
-    run.buffer = ex ? std::make_unique<SectionBuffer>(PixelShare{ex->rank(), ex->ranks(), ctx.pixels()}, layout,
-                                                      ctx.initial_radius, ctx.has_ambient())
-                    : std::make_unique<SectionBuffer>(ctx.pixels(), layout, ctx.initial_radius, ctx.has_ambient());
+    RankExchange* ex = ctx.exchange;  // resumed sections come only to a single process
+    run.buffer = resume_from ? std::move(resume_from)
+                 : ex        ? std::make_unique<SectionBuffer>(PixelShare{ex->rank(), ex->ranks(), ctx.pixels()}, layout,
+                                                               ctx.initial_radius, ctx.has_ambient())
+                             : std::make_unique<SectionBuffer>(ctx.pixels(), layout, ctx.initial_radius, ctx.has_ambient());
     SectionBuffer& buffer = *run.buffer;
     PhotonMap photons;
     // Volume photons exist only with a medium: a vacuum scene allocates none of it.
     std::unique_ptr<VolumePhotonMap> volume;
     if (ctx.medium) {
         volume = std::make_unique<VolumePhotonMap>();
-        buffer.volume_radius2 = static_cast<double>(ctx.volume_radius) * ctx.volume_radius;
+        if (buffer.passes_done == 0) buffer.volume_radius2 = static_cast<double>(ctx.volume_radius) * ctx.volume_radius;
     }
 
     if (ex) {  // several ranks: their own loop, which overlaps the photon exchange with work
@@ -41,9 +44,12 @@ SectionRun render_section(const RenderContext& ctx, const SectionLayout& layout,
     }
 
     flow::graph g;
-    int next_pass = 0;
+    int next_pass = buffer.passes_done;
+    // The source makes its next item ahead of time, so `cancelled` is asked where a pass really
+    // starts (with the passes done so far); a pass it refuses does nothing (-1).
+    std::atomic<bool> stopped{false};
     flow::input_node<int> source(g, [&](tbb::flow_control& fc) -> int {
-        if (next_pass >= passes || (cancelled && cancelled())) {
+        if (next_pass >= passes || stopped.load()) {
             fc.stop();
             return 0;
         }
@@ -51,12 +57,22 @@ SectionRun render_section(const RenderContext& ctx, const SectionLayout& layout,
     });
     flow::limiter_node<int> one_pass_at_a_time(g, 1);
     flow::function_node<int, int> photon(g, flow::serial, [&](int pass) {
+        if (stopped.load() || (cancelled && cancelled())) {
+            stopped = true;
+            return -1;
+        }
         auto t0 = std::chrono::steady_clock::now();
-        photons.build(ctx, layout, pass, photons_per_pass, 2 * buffer.max_radius, counters.photons, volume.get());
+        bool whole = photons.build(ctx, layout, pass, photons_per_pass, 2 * buffer.max_radius, counters.photons,
+                                   volume.get(), abandon);
         run.times.photons += seconds_since(t0);
+        if (!whole) {
+            stopped = true;
+            return -1;
+        }
         return pass;
     });
     flow::function_node<int, flow::continue_msg> camera(g, flow::serial, [&](int pass) {
+        if (pass < 0) return flow::continue_msg();
         CameraPassTimes t = camera_pass(ctx, pass, PassPhotons{photons, volume.get(), photons_per_pass}, buffer,
                                         counters.camera);
         run.times.camera += t.trace;

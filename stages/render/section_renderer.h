@@ -9,6 +9,7 @@
 // direct light, the beam estimate, the time-bucket scatter and the radius update. Gathering
 // where the path ends keeps no visible points between the two stages: the only per-pixel
 // memory of a section is its buffer.
+#include <atomic>
 #include <functional>
 #include <memory>
 
@@ -39,8 +40,16 @@ struct SectionRun {
     uint64_t photon_map_bytes = 0;  // surface and volume photons
 };
 
+// Renders passes until `passes` are done or `cancelled()` (asked before each pass) says stop.
+// `resume_from`: the state to render into, fresh (a new SectionBuffer) or a checkpoint's (its
+// passes_done passes are kept; the random streams of pass i depend only on the seed and i, so
+// the result equals a render that never stopped). Null: a fresh buffer is made here.
+// `abandon`, set during a pass, drops that pass while its photons are traced (within a batch):
+// the buffer keeps the passes before it. Once the camera pass has begun, the pass finishes.
 SectionRun render_section(const RenderContext& ctx, const SectionLayout& layout, int passes,
                           int64_t photons_per_pass, SectionCounters& counters,
-                          const PassCallback& on_pass = {}, const std::function<bool()>& cancelled = {});
+                          const PassCallback& on_pass = {}, const std::function<bool()>& cancelled = {},
+                          std::unique_ptr<SectionBuffer> resume_from = nullptr,
+                          const std::atomic<bool>* abandon = nullptr);
 
 }  // namespace sl

@@ -213,7 +213,8 @@ TEST(CommandLine, HelpListsEveryContractFlag) {
           "--exr-dir",        "--png-dir",      "--frames",       "--passes",      "--photons",
           "--width",          "--height",       "--seed",         "--sections",    "--max-memory",
           "--emission",       "--camera-tof",   "--strategy",     "--threads",     "--stats",
-          "--exposure",       "--no-progress",  "frame-by-frame", "pulse:WIDTH_NS"})
+          "--exposure",       "--no-progress",  "frame-by-frame", "pulse:WIDTH_NS", "--checkpoint DIR",
+          "--checkpoint-every", "--time-limit", "--preview",    "--resume"})
         EXPECT_NE(help.find(flag), std::string::npos) << flag;
     // One line per option: no line longer than a wide terminal.
     size_t start = 0;

@@ -1,6 +1,7 @@
-// A long render stopped by SIGINT/SIGTERM keeps what it paid for: the frames in hand are
-// written, the video plays, the EXRs are whole, the exit status is 130; --resume finishes it
-// and the result equals an uninterrupted render.
+// A long render stopped by SIGINT/SIGTERM keeps what it paid for: every frame of the section in
+// progress is written from the passes it completed, after the finished sections; the video
+// plays, the EXRs are whole, the exit status is 130; --resume finishes it and the result
+// equals an uninterrupted render.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -9,6 +10,7 @@
 #include <sstream>
 #include <string>
 
+#include "checkpoint_helpers.h"
 #include "process.h"
 #include "stages/output/exr_io.h"
 #include "stages/output/video_reader.h"
@@ -61,12 +63,25 @@ TEST_P(Interrupt, WritesFramesInHandClosesTheVideoAndExits130) {
             section_ends.insert(last + 1);
     }
     EXPECT_EQ(section_ends.count(frames), 1u) << "whole sections only: " << frames << " frames";
+    // The finished sections' frames got every pass, the interrupted section's fewer.
+    int partial = 0;
     for (size_t k = 0; k < frames; ++k) {
         char name[64];
         std::snprintf(name, sizeof name, "/a/frame_%04zu.exr", k);
         ExrImage img = read_exr(dir + name);  // whole: it reads back
         EXPECT_EQ(img.width, 48);
+        int passes = std::stoi(img.metadata.at("slowlight:passes"));
+        EXPECT_GE(passes, 1);
+        EXPECT_LE(passes, 40);
+        if (img.metadata.count("slowlight:interrupted")) {
+            EXPECT_LT(passes, 40);
+            ++partial;
+        } else {
+            EXPECT_EQ(partial, 0) << "a finished section after an interrupted one";
+            EXPECT_EQ(passes, 40);
+        }
     }
+    // (partial may be 0: the signal can land between two sections, before a pass of the next.)
     VideoInfo v = read_video(dir + "/a.mkv");  // closed properly: it decodes
     EXPECT_EQ(v.frames, static_cast<int64_t>(frames));
     std::string probe = "ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames -of csv=p=0 " +
@@ -79,6 +94,122 @@ TEST_P(Interrupt, WritesFramesInHandClosesTheVideoAndExits130) {
 
 INSTANTIATE_TEST_SUITE_P(Signals, Interrupt, ::testing::Values(SIGINT, SIGTERM));
 
+// One section, interrupted after a few passes: all F frames are written, and they are exactly
+// the frames of an uninterrupted render asked for that many passes (same seed).
+TEST(Interrupt, OneSectionDeliversEveryFrameFromThePassesDone) {
+    const std::string dir = test::fresh_dir("partial");
+    auto args = [&](const std::string& sub, const std::string& passes) {
+        return std::vector<std::string>{"render", "--width", "32", "--height", "24", "--frames", "6", "--passes", passes,
+                                        "--photons", "3000", "--exr-dir", dir + "/" + sub, "-o", dir + "/" + sub + ".mkv",
+                                        "--stats", dir + "/" + sub + ".json", "--checkpoint-every", "0", "--no-progress"};
+    };
+    test::Child c = test::spawn(args("a", "100000"), dir + "/err.txt");
+    ASSERT_TRUE(test::wait_for(dir + "/a/section_0000.ckpt"));  // at least one pass done
+    std::this_thread::sleep_for(std::chrono::milliseconds(150));
+    kill(c.pid, SIGINT);
+    ASSERT_EQ(test::wait_exit(c), 130);
+    const std::string err = test::read_text(dir + "/err.txt");
+
+    nlohmann::json stats = test::read_json(dir + "/a.json");
+    ASSERT_TRUE(stats.is_object()) << err;
+    EXPECT_TRUE(stats["interrupted"].get<bool>());
+    const int n = stats["passes_per_section"][0].get<int>();
+    EXPECT_GE(n, 1);
+    EXPECT_LT(n, 100000);
+    EXPECT_EQ(stats["passes_reached"].get<int>(), n);
+    // The message says what was written and how to continue.
+    EXPECT_NE(err.find("wrote frames 0-5 (section 1 from " + std::to_string(n) + " of 100000 passes)"), std::string::npos)
+        << err;
+    EXPECT_NE(err.find("--resume"), std::string::npos) << err;
+
+    VideoInfo v = read_video(dir + "/a.mkv");
+    EXPECT_EQ(v.frames, 6);
+    for (int k = 0; k < 6; ++k)
+        EXPECT_EQ(read_exr(dir + "/a" + test::frame_name(k)).metadata.at("slowlight:passes"), std::to_string(n));
+
+    test::RunResult b = test::run(args("b", std::to_string(n)), dir);
+    ASSERT_EQ(b.status, 0) << b.err;
+    test::expect_same_exrs(dir + "/a", dir + "/b", 6);
+    EXPECT_EQ(v.mean_luma, read_video(dir + "/b.mkv").mean_luma) << "same frames, same exposure";
+    fs::remove_all(dir);
+}
+
+// A pass of many photons is abandoned while they are traced (the buffer keeps the passes before
+// it), so an interrupt does not wait for it: fewer photons were traced than the passes done plus
+// one, and the frames equal a render of the passes done.
+TEST(Interrupt, AbandonsAPassWhilePhotonsAreTraced) {
+    const std::string dir = test::fresh_dir("abandon");
+    auto args = [&](const std::string& sub, const std::string& passes) {
+        return std::vector<std::string>{"render", "--width", "16", "--height", "16", "--frames", "3", "--passes", passes,
+                                        "--photons", "1000000", "--exr-dir", dir + "/" + sub, "--stats",
+                                        dir + "/" + sub + ".json", "--checkpoint-every", "0", "--no-progress"};
+    };
+    int abandoned = 0, n = 0;
+    for (int attempt = 0; attempt < 3 && abandoned == 0; ++attempt) {
+        fs::remove_all(dir + "/a");
+        test::Child c = test::spawn(args("a", "1000"), dir + "/err.txt");
+        ASSERT_TRUE(test::wait_for(dir + "/a/section_0000.ckpt"));  // the first pass is done
+        std::this_thread::sleep_for(std::chrono::milliseconds(200));  // the second is under way
+        kill(c.pid, SIGINT);
+        ASSERT_EQ(test::wait_exit(c), 130);
+        nlohmann::json s = test::read_json(dir + "/a.json");
+        n = s["passes_per_section"][0].get<int>();
+        abandoned += s["photons_traced"].get<int64_t>() < int64_t(n + 1) * 1000000;
+    }
+    EXPECT_GE(abandoned, 1) << "the pass in flight was always finished";
+    ASSERT_GE(n, 1);
+    test::RunResult b = test::run(args("b", std::to_string(n)), dir);
+    ASSERT_EQ(b.status, 0) << b.err;
+    test::expect_same_exrs(dir + "/a", dir + "/b", 3);
+    fs::remove_all(dir);
+}
+
+// A signal during set-up (here: while a large mesh is being read) ends the run at once with
+// exit 130 and nothing written.
+TEST(Interrupt, DuringSetUpWritesNothing) {
+    const std::string dir = test::fresh_dir("setup");
+    {
+        std::ofstream obj(dir + "/big.obj");
+        const int n = 400;  // a 400x400 grid: 320 000 triangles, a few seconds to read and build
+        for (int i = 0; i <= n; ++i)
+            for (int j = 0; j <= n; ++j) obj << "v " << i * 0.001 << " 0.0 " << j * 0.001 << "\n";
+        for (int i = 0; i < n; ++i)
+            for (int j = 0; j < n; ++j) {
+                int a = i * (n + 1) + j + 1, b = a + 1, c2 = a + n + 1, d = c2 + 1;
+                obj << "f " << a << ' ' << b << ' ' << d << "\nf " << a << ' ' << d << ' ' << c2 << "\n";
+            }
+    }
+    std::ofstream(dir + "/scene.json") << R"({
+        "camera": {"position": [0, 1, 3], "look_at": [0, 0, 0], "width": 16, "height": 16},
+        "materials": {"w": {"type": "diffuse", "albedo": [0.5, 0.5, 0.5]}},
+        "shapes": [{"type": "mesh", "file": "big.obj", "material": "w"}],
+        "lights": [{"type": "point", "position": [0, 1.5, 0], "power": [1, 1, 1]}],
+        "time": {"start_ns": 0, "end_ns": 10, "frames": 2},
+        "render": {"passes": 2, "photons_per_pass": 100}})";
+    test::Child c = test::spawn({"render", dir + "/scene.json", "-o", dir + "/out.mkv", "--exr-dir", dir + "/exr",
+                                 "--stats", dir + "/s.json", "--no-progress"},
+                                dir + "/err.txt");
+    // Wait until the program has its handlers (it is then setting up), then signal.
+    for (int i = 0; i < 5000; ++i) {
+        std::ifstream status("/proc/" + std::to_string(c.pid) + "/status");
+        std::string line;
+        bool ready = false;
+        while (std::getline(status, line))
+            if (line.rfind("SigCgt:", 0) == 0) ready = (std::stoull(line.substr(7), nullptr, 16) >> (SIGTERM - 1)) & 1;
+        if (ready) break;
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    kill(c.pid, SIGTERM);
+    EXPECT_EQ(test::wait_exit(c), 130);
+    const std::string err = test::read_text(dir + "/err.txt");
+    EXPECT_NE(err.find("interrupted during set-up; nothing written"), std::string::npos) << err;
+    EXPECT_FALSE(fs::exists(dir + "/out.mkv"));
+    EXPECT_FALSE(fs::exists(dir + "/exr"));
+    EXPECT_FALSE(fs::exists(dir + "/s.json"));
+    for (auto& e : fs::directory_iterator(dir)) EXPECT_NE(e.path().filename().string()[0], '.') << "temporary file left";
+    fs::remove_all(dir);
+}
+
 TEST(Interrupt, SecondSignalExitsAtOnceWithoutBrokenFiles) {
     std::string dir = test::fresh_dir("twice");
     test::Child c = test::spawn(long_render(dir, "a"), dir + "/err.txt");
@@ -88,7 +219,8 @@ TEST(Interrupt, SecondSignalExitsAtOnceWithoutBrokenFiles) {
     auto t0 = std::chrono::steady_clock::now();
     EXPECT_EQ(test::wait_exit(c, 10), 130);
     EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 5.0);
-    for (auto& e : fs::directory_iterator(dir + "/a")) EXPECT_NO_THROW(read_exr(e.path().string())) << e.path();
+    for (auto& e : fs::directory_iterator(dir + "/a"))
+        if (e.path().extension() == ".exr") EXPECT_NO_THROW(read_exr(e.path().string())) << e.path();
     // The video is either closed and playable or absent; never a truncated file under its name.
     if (fs::exists(dir + "/a.mkv")) {
         EXPECT_GT(read_video(dir + "/a.mkv").frames, 0);

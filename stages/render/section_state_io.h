@@ -1,0 +1,72 @@
+#pragma once
+// A section's whole convergence state on disk (a checkpoint): everything a pass reads from the
+// previous ones — per-pixel radius^2 and photon count, the ambient sums, every time slot's RGB
+// sums, the largest radius, the volume radius and the number of passes done. Random streams
+// are a function of the seed and the pass index, so this state and the pass index are all a
+// render needs to continue exactly where it stopped.
+//
+// The format is full-image and pixel-ordered (pixel = row * width + column, row 0 at the top),
+// little-endian, independent of the thread count and of how the buffer tiles pixels in memory,
+// so that any process layout (one process, or ranks owning shares of the pixels) can read or
+// write any share of it:
+//
+//   header, 256 bytes: magic "SLCHKPT\n", format version, header size, program version,
+//     settings fingerprint, section index and count, passes done and asked for, whether the
+//     section is finished, width, height, slots, frames, ambient, max radius, volume radius^2,
+//     payload size, payload checksum, header checksum
+//   radius2       f64[pixels]
+//   photon_count  f64[pixels]
+//   ambient       f32[pixels][3]            (only when the header says so)
+//   slots         f32[pixels][slots][3]
+//
+// Files are written to a temporary sibling, fsync'ed, renamed and the directory fsync'ed, so a
+// crash (kill -9, power loss) at any moment leaves either the previous checkpoint or the new
+// one, never a mix. Reading verifies everything and throws InputError on any mismatch.
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "stages/render/section_buffer.h"
+
+namespace sl {
+
+inline constexpr uint32_t kSectionStateFormat = 1;
+inline constexpr size_t kSectionStateHeaderBytes = 256;
+
+// Who a checkpoint belongs to; compared field by field when reading.
+struct SectionStateId {
+    std::string program_version;  // at most 31 characters
+    std::string fingerprint;      // settings fingerprint, at most 31 characters
+    int section = 0, sections = 1;
+    int passes_target = 0;        // the render's --passes
+    int width = 0, height = 0;
+};
+
+struct SectionStateInfo {
+    SectionStateId id;
+    uint32_t format = 0;
+    int passes_done = 0;
+    bool finished = false;  // the section reached its last pass (or its time limit)
+    int slots = 0, frames = 0;
+    bool ambient = false;
+    uint64_t payload_bytes = 0;
+};
+
+// Writes `buffer` atomically to `path`. Returns the bytes written. Throws RuntimeFailure.
+uint64_t save_section_state(const std::string& path, const SectionBuffer& buffer, const SectionStateId& id,
+                            bool finished);
+
+// The header alone, checked for magic, format and its own checksum (InputError otherwise).
+SectionStateInfo read_section_state_info(const std::string& path);
+
+// Checks that the file at `path` is a whole, uncorrupted checkpoint of `expected` with the
+// given layout (header, sizes, payload checksum) without keeping its contents. InputError.
+SectionStateInfo verify_section_state(const std::string& path, const SectionStateId& expected,
+                                      const SectionLayout& layout, bool ambient);
+
+// Reads the state back into a new buffer (verified as above). InputError.
+std::unique_ptr<SectionBuffer> load_section_state(const std::string& path, const SectionStateId& expected,
+                                                  const SectionLayout& layout, bool ambient,
+                                                  SectionStateInfo* info = nullptr);
+
+}  // namespace sl
