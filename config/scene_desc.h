@@ -137,16 +137,14 @@ struct SceneDesc {
     std::vector<ShapeDesc> shapes;
     std::vector<LightDesc> lights;
     std::vector<TextureDesc> textures;
-    // Every file read besides the scene file (meshes, .mtl, .bin, textures), once resolved.
-    std::vector<std::string> input_files;
     bool imports_resolved = false;
     std::optional<CameraDesc> imported_camera;  // the first camera of an imported glTF file
     MediumDesc medium;
     TimeDesc time;
     EmissionDesc emission;
     RenderDesc render;
-    // Every file the run reads (the scene file first, then meshes, ...), so that no output
-    // may be one of them. Importers append what they read.
+    // Every file the run reads (the scene file first, then meshes, .mtl, .bin, textures), so
+    // that no output may be one of them. Importers append what they read.
     std::vector<std::string> input_files;
 };
 

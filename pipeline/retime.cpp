@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "config/command_line.h"
 #include "config/input_file.h"
 #include "config/json_reader.h"
 #include "config/limits.h"

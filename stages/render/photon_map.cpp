@@ -161,7 +161,6 @@ void PhotonMap::finish(const RenderContext& ctx, double cell_size, PhotonTraceCo
         for (const Batch& v : batches_) parts.push_back(&v.volume);
         volume->build(parts);
     }
-    return true;
 }
 
 // One all-gather per pass. A rank's message: per own batch its record and volume-photon counts
