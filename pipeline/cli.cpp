@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "config/command_line.h"
@@ -130,6 +131,10 @@ void print_final_line(const FrameOutputs& outputs, const std::string& stats_path
 
 // `slowlight info cube.npy`: a cube is not a scene; say what to do with it.
 void refuse_cube_as_scene(const std::string& path) {
+    struct stat st {};
+    // Only a regular file is opened here: a FIFO or device would block (the scene reader then
+    // refuses it with its own message).
+    if (::stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) return;
     std::ifstream f(path, std::ios::binary);
     if (!f) return;  // missing: the scene reader says so
     char magic[6] = {};
@@ -365,8 +370,9 @@ int render(RunOptions o, const std::vector<std::string>& argv) {
 
 int run_cli(int argc, char** argv) {
     if (argc <= 1) {  // `slowlight` alone: what it can do
-        std::fprintf(stderr, "error: command line: no command given (expected render, info or retime)\n\n%s",
-                     commands_text().c_str());
+        // The one error line on stderr (as for any bad command line), the commands on stdout.
+        std::fprintf(stderr, "error: command line: no command given (expected render, info or retime)\n");
+        std::cout << commands_text();
         return 2;
     }
     // Under an MPI launcher with several processes: MPI, through its plugin (else nothing).

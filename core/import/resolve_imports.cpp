@@ -121,7 +121,9 @@ void resolve_imports(SceneDesc& scene) {
     // A scene needs light: its own lights, or emissive triangles.
     bool lit = false;
     for (const LightDesc& l : scene.lights)
-        lit |= !is_black(l.type == LightType::Quad ? l.radiance : l.power);
+        lit |= !is_black(l.type == LightType::Quad  ? l.radiance
+                        : l.type == LightType::Sun ? l.irradiance
+                                                   : l.power);
     for (const ShapeDesc& s : scene.shapes)
         if (s.mesh && !lit)
             for (int32_t m : s.mesh->tri_material) if (scene.materials[static_cast<size_t>(m)].emits()) { lit = true; break; }

@@ -49,14 +49,14 @@ TEST(MemoryPerRank, InfoWithRanksDividesTheBucketsByTheRankCount) {
     EXPECT_EQ(r.exit_code, 2) << "--ranks outside mpirun is for info: " << r.err;
 }
 
-TEST(MemoryPerRank, MaxMemoryUnderMpirunIsABudgetPerRank) {
+TEST(MemoryPerRank, MaxBucketMemoryUnderMpirunIsABudgetPerRank) {
     if (find_mpirun().empty()) GTEST_SKIP() << "no mpirun on the PATH";
     ScratchDir dir;
     std::map<int, uint64_t> two = info_bytes(dir, {"--ranks", "2", "--frames", "8"});
     ASSERT_TRUE(two.count(1));
     // A budget that holds K = 1 on each of two ranks, but not one rank's whole image.
     const std::vector<std::string> args = {"render", sample("cornell_box.json"), "--frames", "8", "--passes", "1",
-                                           "--photons", "1000", "--no-progress", "--max-memory",
+                                           "--photons", "1000", "--no-progress", "--max-bucket-memory",
                                            std::to_string(two[1])};
     auto with_stats = [&](std::vector<std::string> a, const std::string& name) {
         a.insert(a.end(), {"--stats", dir.file(name)});

@@ -3,6 +3,8 @@
 // without any output refuses to start, and every run ends with a line saying what it wrote.
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <iterator>
 #include <regex>
 
 #include "tests/pipeline/pipeline_helpers.h"
@@ -21,11 +23,14 @@ std::string last_line(const std::string& text) {
 }  // namespace
 
 TEST(Subcommands, AloneListsEveryCommand) {
-    ProgramResult r = run_program({});
+    ScratchDir dir;
+    ProgramResult r = run_program({}, dir.file("stdout.txt"));
     SL_EXPECT_EXIT(r, 2);
     EXPECT_EQ(r.error_lines().size(), 1u) << r.err;
+    std::ifstream f(dir.file("stdout.txt"));
+    const std::string out((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
     for (const char* c : {"slowlight render", "slowlight info", "slowlight retime", "--help"})
-        EXPECT_NE(r.err.find(c), std::string::npos) << c << " missing from:\n" << r.err;
+        EXPECT_NE(out.find(c), std::string::npos) << c << " missing from:\n" << out;
 }
 
 TEST(Subcommands, EachHasItsOwnHelpWithOnlyItsOptions) {
