@@ -2,8 +2,8 @@
 # Fuzzes the readers of untrusted files with libFuzzer under AddressSanitizer and
 # UndefinedBehaviorSanitizer, each for a bounded time (default 60 s per target):
 #   bash scripts/fuzz.sh [SECONDS]
-# Targets (fuzz/fuzz_NAME.cpp): scene (scene JSON and the command line), obj (OBJ meshes),
-# resume_exr (EXR frames read back by --resume). Seeds are in build-fuzz/corpus/NAME/,
+# Targets (fuzz/fuzz_NAME.cpp): scene (scene JSON and the command line), obj (OBJ meshes and
+# .mtl), gltf (binary glTF), resume_exr (EXR frames read back by --resume). Seeds are in build-fuzz/corpus/NAME/,
 # findings in build-fuzz/findings/. A new target: its file, a line in CMakeLists.txt, and its
 # name (with its seeds) below.
 set -euo pipefail
@@ -17,7 +17,7 @@ if ((${#missing[@]})); then
   "${sudo_cmd[@]}" apt-get update -qq
   DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
-targets=(scene obj resume_exr)
+targets=(scene obj gltf resume_exr)
 cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++-14 \
       -DSLOWLIGHT_FUZZ=ON -DBUILD_TESTING=OFF >/dev/null
 cmake --build build-fuzz --target "${targets[@]/#/fuzz_}"
@@ -26,6 +26,28 @@ for t in "${targets[@]}"; do mkdir -p "build-fuzz/corpus/$t"; done
 cp samples/*.json build-fuzz/corpus/scene/
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nvt 0 0\nf 1/1/1 2/1/1 3/1/1\nf 1 2 3 4\n' > build-fuzz/corpus/obj/tri.obj
 printf 'o q\nv -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nusemtl m\nf -4 -3 -2 -1\n' > build-fuzz/corpus/obj/quad.obj
+# A glTF seed: the Cornell box of the import tests is made by a test; here, the smallest valid
+# .glb (one triangle) written by python3's standard library.
+python3 - build-fuzz/corpus/gltf/tri.glb <<'PY'
+import json, struct, sys
+pos = struct.pack("<9f", 0, 0, 0, 1, 0, 0, 0, 1, 0)
+idx = struct.pack("<3H", 0, 1, 2) + b"\0\0"
+gl = {"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+      "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "material": 0}]}],
+      "materials": [{"pbrMetallicRoughness": {"baseColorFactor": [0.8, 0.8, 0.8, 1]}, "emissiveFactor": [1, 1, 1]}],
+      "buffers": [{"byteLength": len(pos) + len(idx)}],
+      "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": len(pos)},
+                      {"buffer": 0, "byteOffset": len(pos), "byteLength": 6}],
+      "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                     "min": [0, 0, 0], "max": [1, 1, 0]},
+                    {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"}]}
+js = json.dumps(gl).encode()
+js += b" " * (-len(js) % 4)
+binary = pos + idx
+out = struct.pack("<III", 0x46546C67, 2, 12 + 8 + len(js) + 8 + len(binary))
+out += struct.pack("<II", len(js), 0x4E4F534A) + js + struct.pack("<II", len(binary), 0x004E4942) + binary
+open(sys.argv[1], "wb").write(out)
+PY
 export FUZZ_SEED_DIR=build-fuzz/corpus/resume_exr  # fuzz_resume_exr writes a valid frame there
 for t in "${targets[@]}"; do
   echo "fuzz: $t for $seconds s" >&2
