@@ -7,19 +7,10 @@
 
 #include "config/input_file.h"
 #include "core/errors.h"
+#include "core/placement.h"
 
 namespace sl {
 namespace {
-
-Vec3 rotate_xyz(Vec3 p, Vec3 deg) {
-    const float k = 3.14159265358979f / 180.0f;
-    float cx = std::cos(deg.x * k), sx = std::sin(deg.x * k);
-    p = {p.x, cx * p.y - sx * p.z, sx * p.y + cx * p.z};
-    float cy = std::cos(deg.y * k), sy = std::sin(deg.y * k);
-    p = {cy * p.x + sy * p.z, p.y, -sy * p.x + cy * p.z};
-    float cz = std::cos(deg.z * k), sz = std::sin(deg.z * k);
-    return {cz * p.x - sz * p.y, sz * p.x + cz * p.y, p.z};
-}
 
 void add_quad(TriangleSoup& s, Vec3 c, Vec3 e1, Vec3 e2) {
     auto base = static_cast<uint32_t>(s.vertices.size());

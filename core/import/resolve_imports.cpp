@@ -7,21 +7,12 @@
 
 #include "core/errors.h"
 #include "core/import/imported_file.h"
+#include "core/placement.h"
 #include "core/texture.h"
 #include "core/texture_load.h"
 
 namespace sl {
 namespace {
-
-Vec3 rotate_xyz(Vec3 p, Vec3 deg) {
-    const float k = 3.14159265358979f / 180.0f;
-    float cx = std::cos(deg.x * k), sx = std::sin(deg.x * k);
-    p = {p.x, cx * p.y - sx * p.z, sx * p.y + cx * p.z};
-    float cy = std::cos(deg.y * k), sy = std::sin(deg.y * k);
-    p = {cy * p.x + sy * p.z, p.y, -sy * p.x + cy * p.z};
-    float cz = std::cos(deg.z * k), sz = std::sin(deg.z * k);
-    return {cz * p.x - sz * p.y, sz * p.x + cz * p.y, p.z};
-}
 
 struct Placement {
     const ShapeDesc& s;
