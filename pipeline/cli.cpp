@@ -310,8 +310,15 @@ int render(RunOptions o, const std::vector<std::string>& argv) {
                      (o.exr_dir.empty() ? checkpoints.dir : o.exr_dir).c_str());
     if (root && budget.limited() && !stats.interrupted) {
         int reached = budget.passes().value_or(scene.render.passes);
-        std::fprintf(stderr, "slowlight: time limit %s: %d pass%s per section (--passes %d)\n",
-                     format_duration(*o.time_limit).c_str(), reached, reached == 1 ? "" : "es", scene.render.passes);
+        int fewest = reached;  // a later section is cut short only when the run went well past the budget
+        for (int n : stats.passes_per_section)
+            if (n > 0) fewest = std::min(fewest, n);
+        std::fprintf(stderr, "slowlight: time limit %s: %d pass%s per section (--passes %d)%s\n",
+                     format_duration(*o.time_limit).c_str(), reached, reached == 1 ? "" : "es", scene.render.passes,
+                     fewest < reached ? ("; a later section was cut at " + std::to_string(fewest) +
+                                         " passes: the run had gone a quarter past the budget")
+                                            .c_str()
+                                      : "");
     }
     auto tf = std::chrono::steady_clock::now();
     outputs.finish();
