@@ -314,6 +314,7 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameOutputs& outputs, const 
         stats.render.photons += s->run.times.photons;
         stats.render.gather += s->run.times.gather;
         stats.render.grid += s->run.times.grid;
+        stats.render.volume += s->run.times.volume;
         stats.photon_map_bytes = std::max(stats.photon_map_bytes, s->run.photon_map_bytes);
         if (!s->complete) s->run.buffer.reset();
         return s;

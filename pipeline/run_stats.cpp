@@ -38,6 +38,7 @@ void write_stats_json(const std::string& path, const RunSummary& s) {
         {"visible_points", p.render.camera},
         {"photon_passes", p.render.photons},
         {"time_bucket_scatter", p.render.gather},
+        {"beam_estimate", p.render.volume},  // part of the camera pass, with a medium only
         {"frame_assembly", p.assembly},
         {"writers", p.writing + s.output_seconds},
     };
