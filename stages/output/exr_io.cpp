@@ -9,8 +9,13 @@
 #include <OpenEXR/ImfStringAttribute.h>
 #include <Imath/half.h>
 
+#include <algorithm>
 #include <cstddef>
+#include <cstdint>
+#include <cstring>
 #include <exception>
+#include <fstream>
+#include <vector>
 
 #include "core/errors.h"
 #include "stages/output/atomic_file.h"
@@ -96,7 +101,59 @@ ExrImage read_exr(const std::string& path) {
     }
 }
 
+namespace {
+
+// OpenEXR sizes its tables from the header before any check of ours can run: a forged file that
+// declares a huge attribute or data window makes the library allocate gigabytes. So the header is
+// walked here first, in the file's own bytes: every attribute must fit in the file, and the data
+// window must be one that a file of this size could hold (at least 8 bytes of offset table per
+// scanline). Found by fuzzing --resume's reader.
+void check_header_fits_file(const std::string& path) {
+    std::ifstream f(path, std::ios::binary | std::ios::ate);
+    const std::streamoff end = f ? static_cast<std::streamoff>(f.tellg()) : 0;
+    const size_t file_size = end > 0 ? static_cast<size_t>(end) : 0;
+    // The header is at the start and small: read at most 1 MiB of it.
+    std::vector<char> bytes(std::min<size_t>(file_size, size_t(1) << 20));
+    f.seekg(0);
+    if (!bytes.empty() && !f.read(bytes.data(), static_cast<std::streamsize>(bytes.size())))
+        throw RuntimeFailure("cannot read EXR '" + path + "'");
+    const size_t n = bytes.size();
+    auto bad = [&](const std::string& what) { throw RuntimeFailure("cannot read EXR '" + path + "': " + what); };
+    if (n < 8 || static_cast<unsigned char>(bytes[0]) != 0x76 || bytes[1] != 0x2f || bytes[2] != 0x31 || bytes[3] != 0x01)
+        bad("not an OpenEXR file");
+    size_t at = 8;
+    auto cstring = [&]() {
+        const size_t start = at;
+        while (at < n && bytes[at] != 0) ++at;
+        if (at >= n || at - start > 255) bad("a header attribute's name or type runs past the file");
+        ++at;
+        return std::string(&bytes[start], at - 1 - start);
+    };
+    for (;;) {
+        if (at >= n) bad(n < file_size ? "its header is larger than 1 MiB" : "the header has no end");
+        if (bytes[at] == 0) break;  // the header's end
+        const std::string name = cstring(), type = cstring();
+        if (at + 4 > n) bad("header attribute '" + name + "' runs past the file");
+        int32_t size;
+        std::memcpy(&size, &bytes[at], 4);
+        at += 4;
+        if (size < 0 || static_cast<size_t>(size) > file_size - at) bad("header attribute '" + name + "' runs past the file");
+        if (name == "dataWindow" && type == "box2i" && size == 16 && at + 16 <= n) {
+            int32_t box[4];
+            std::memcpy(box, &bytes[at], 16);
+            const int64_t w = int64_t(box[2]) - box[0] + 1, h = int64_t(box[3]) - box[1] + 1;
+            if (w <= 0 || h <= 0 || w > (int64_t(1) << 20) || h > static_cast<int64_t>(file_size / 8))
+                bad("its data window (" + std::to_string(w) + " x " + std::to_string(h) + ") cannot be in a file of " +
+                    std::to_string(file_size) + " bytes");
+        }
+        at += static_cast<size_t>(size);
+    }
+}
+
+}  // namespace
+
 ExrHeaderInfo read_exr_header(const std::string& path) {
+    check_header_fits_file(path);
     try {
         Imf::InputFile in(path.c_str());
         const Imf::Header& header = in.header();
