@@ -12,6 +12,7 @@
 
 #include "config/run_options.h"
 #include "pipeline/exposure.h"
+#include "stages/output/exr_header_scan.h"
 #include "stages/output/npy_cube.h"
 #include "stages/output/time_label.h"
 #include "stages/output/video_encoder.h"
@@ -56,6 +57,7 @@ public:
     std::string exr_frame_path(int index) const;
     std::string exr_steady_path() const;
     const std::string& exr_dir() const { return settings_.exr_dir; }
+    ExrSize frame_size() const { return {settings_.width, settings_.height}; }  // what reading back expects
 
     // "wrote out.mp4 (48 frames), exr/ (48 EXR frames + steady.exr)": what finish() left behind.
     std::string summary() const;

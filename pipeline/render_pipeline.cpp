@@ -128,11 +128,11 @@ ExposurePlan exposure_from_preview(const RenderContext& ctx, const ExposureRule&
 // A resumed render of one section: the same images, read back from its EXR files.
 ExposurePlan exposure_from_disk(const RenderContext& ctx, const ExposureRule& rule, const FrameOutputs& outputs) {
     ExposureMeter meter(ctx.scene.emission.mode, rule, emitter_pixels(ctx));
-    ExrImage steady = read_exr(outputs.exr_steady_path());
+    ExrImage steady = read_exr(outputs.exr_steady_path(), outputs.frame_size());
     meter.add_steady(steady.rgb.data(), ctx.pixels());
     if (meter.wants_frames())
         for (int f = 0; f < ctx.timeline.frames; ++f)
-            meter.add_frame(f, read_exr(outputs.exr_frame_path(f)).rgb.data(), ctx.pixels());
+            meter.add_frame(f, read_exr(outputs.exr_frame_path(f), outputs.frame_size()).rgb.data(), ctx.pixels());
     return meter.decide();
 }
 

@@ -55,7 +55,7 @@ void drop_interrupted_sections(const FrameOutputs& outputs, const std::vector<Se
     for (size_t s = 0; s < sections.size() && s < on_disk.size(); ++s) {
         if (!on_disk[s]) continue;
         try {
-            ExrImage first = read_exr(outputs.exr_frame_path(sections[s].first_frame));
+            ExrImage first = read_exr(outputs.exr_frame_path(sections[s].first_frame), outputs.frame_size());
             auto it = first.metadata.find(kInterruptedKey);
             if (it != first.metadata.end() && it->second == "1") on_disk[s] = false;
         } catch (const RuntimeFailure&) {

@@ -7,6 +7,7 @@
 
 #include "config/input_file.h"
 #include "core/errors.h"
+#include "stages/output/exr_header_scan.h"
 #include "stages/output/exr_io.h"
 
 namespace sl {
@@ -30,7 +31,7 @@ std::vector<float> read_verified_exr(const std::string& path, const ExrExpectati
     } catch (const InputError& err) {
         throw RuntimeFailure(err.what());
     }
-    const ExrHeaderInfo h = read_exr_header(path);
+    const ExrHeaderInfo h = scan_exr_header(path, "--resume: " + path);  // without OpenEXR: nothing sized from the file yet
 
     auto fp = h.metadata.find(e.fingerprint_key);
     if (fp == h.metadata.end() || fp->second != e.fingerprint)
@@ -38,14 +39,7 @@ std::vector<float> read_verified_exr(const std::string& path, const ExrExpectati
                          (fp == h.metadata.end() ? std::string("missing") : fp->second) + ", this render " +
                          e.fingerprint + "); use another --exr-dir or remove it");
 
-    const std::string want = "0,0-" + std::to_string(e.width - 1) + "," + std::to_string(e.height - 1);
-    auto box = [](int x0, int y0, int x1, int y1) {
-        return std::to_string(x0) + "," + std::to_string(y0) + "-" + std::to_string(x1) + "," + std::to_string(y1);
-    };
-    const std::string data = box(h.data_x0, h.data_y0, h.data_x1, h.data_y1);
-    const std::string display = box(h.display_x0, h.display_y0, h.display_x1, h.display_y1);
-    if (data != want || display != want)
-        throw bad("its data window " + data + " (display window " + display + ") is not this render's " + want);
+    require_exr_size(path, h, {e.width, e.height}, "--resume: " + path);
     const std::map<std::string, std::string> rgb = {{"B", "float"}, {"G", "float"}, {"R", "float"}};
     if (h.channels != rgb) {
         std::string got;
@@ -60,7 +54,7 @@ std::vector<float> read_verified_exr(const std::string& path, const ExrExpectati
     auto sum = h.metadata.find(kChecksumKey);
     if (sum == h.metadata.end()) throw bad("has no pixel checksum");
 
-    ExrImage img = read_exr(path);
+    ExrImage img = read_exr(path, {e.width, e.height});
     if (img.width != e.width || img.height != e.height || img.rgb.size() != pixels * 3)
         throw bad("changed while being read");
     for (size_t i = 0; i < img.rgb.size(); ++i)

@@ -14,11 +14,11 @@
 #include <cstdint>
 #include <cstring>
 #include <exception>
-#include <fstream>
 #include <vector>
 
 #include "core/errors.h"
 #include "stages/output/atomic_file.h"
+#include "stages/output/exr_header_scan.h"
 
 namespace sl {
 
@@ -79,7 +79,8 @@ void write_exr(const std::string& path, int w, int h, const float* rgb,
     commit_file(temp, path);
 }
 
-ExrImage read_exr(const std::string& path) {
+ExrImage read_exr(const std::string& path, ExrSize want) {
+    require_exr_size(path, scan_exr_header(path), want);
     try {
         Imf::InputFile in(path.c_str());
         const Imf::Header& header = in.header();
@@ -96,79 +97,6 @@ ExrImage read_exr(const std::string& path) {
             if (auto* s = dynamic_cast<const Imf::StringAttribute*>(&it.attribute()))
                 img.metadata[it.name()] = s->value();
         return img;
-    } catch (const std::exception& e) {
-        fail("cannot read EXR", path, e);
-    }
-}
-
-namespace {
-
-// OpenEXR sizes its tables from the header before any check of ours can run: a forged file that
-// declares a huge attribute or data window makes the library allocate gigabytes. So the header is
-// walked here first, in the file's own bytes: every attribute must fit in the file, and the data
-// window must be one that a file of this size could hold (at least 8 bytes of offset table per
-// scanline). Found by fuzzing --resume's reader.
-void check_header_fits_file(const std::string& path) {
-    std::ifstream f(path, std::ios::binary | std::ios::ate);
-    const std::streamoff end = f ? static_cast<std::streamoff>(f.tellg()) : 0;
-    const size_t file_size = end > 0 ? static_cast<size_t>(end) : 0;
-    // The header is at the start and small: read at most 1 MiB of it.
-    std::vector<char> bytes(std::min<size_t>(file_size, size_t(1) << 20));
-    f.seekg(0);
-    if (!bytes.empty() && !f.read(bytes.data(), static_cast<std::streamsize>(bytes.size())))
-        throw RuntimeFailure("cannot read EXR '" + path + "'");
-    const size_t n = bytes.size();
-    auto bad = [&](const std::string& what) { throw RuntimeFailure("cannot read EXR '" + path + "': " + what); };
-    if (n < 8 || static_cast<unsigned char>(bytes[0]) != 0x76 || bytes[1] != 0x2f || bytes[2] != 0x31 || bytes[3] != 0x01)
-        bad("not an OpenEXR file");
-    size_t at = 8;
-    auto cstring = [&]() {
-        const size_t start = at;
-        while (at < n && bytes[at] != 0) ++at;
-        if (at >= n || at - start > 255) bad("a header attribute's name or type runs past the file");
-        ++at;
-        return std::string(&bytes[start], at - 1 - start);
-    };
-    for (;;) {
-        if (at >= n) bad(n < file_size ? "its header is larger than 1 MiB" : "the header has no end");
-        if (bytes[at] == 0) break;  // the header's end
-        const std::string name = cstring(), type = cstring();
-        if (at + 4 > n) bad("header attribute '" + name + "' runs past the file");
-        int32_t size;
-        std::memcpy(&size, &bytes[at], 4);
-        at += 4;
-        if (size < 0 || static_cast<size_t>(size) > file_size - at) bad("header attribute '" + name + "' runs past the file");
-        if (name == "dataWindow" && type == "box2i" && size == 16 && at + 16 <= n) {
-            int32_t box[4];
-            std::memcpy(box, &bytes[at], 16);
-            const int64_t w = int64_t(box[2]) - box[0] + 1, h = int64_t(box[3]) - box[1] + 1;
-            if (w <= 0 || h <= 0 || w > (int64_t(1) << 20) || h > static_cast<int64_t>(file_size / 8))
-                bad("its data window (" + std::to_string(w) + " x " + std::to_string(h) + ") cannot be in a file of " +
-                    std::to_string(file_size) + " bytes");
-        }
-        at += static_cast<size_t>(size);
-    }
-}
-
-}  // namespace
-
-ExrHeaderInfo read_exr_header(const std::string& path) {
-    check_header_fits_file(path);
-    try {
-        Imf::InputFile in(path.c_str());
-        const Imf::Header& header = in.header();
-        ExrHeaderInfo info;
-        const Imath::Box2i d = header.dataWindow(), v = header.displayWindow();
-        info.data_x0 = d.min.x, info.data_y0 = d.min.y, info.data_x1 = d.max.x, info.data_y1 = d.max.y;
-        info.display_x0 = v.min.x, info.display_y0 = v.min.y, info.display_x1 = v.max.x, info.display_y1 = v.max.y;
-        for (auto c = header.channels().begin(); c != header.channels().end(); ++c)
-            info.channels[c.name()] = c.channel().type == Imf::HALF    ? "half"
-                                      : c.channel().type == Imf::FLOAT ? "float"
-                                                                        : "uint";
-        for (auto it = header.begin(); it != header.end(); ++it)
-            if (auto* s = dynamic_cast<const Imf::StringAttribute*>(&it.attribute())) info.metadata[it.name()] = s->value();
-        info.tiled = header.hasTileDescription();
-        return info;
     } catch (const std::exception& e) {
         fail("cannot read EXR", path, e);
     }

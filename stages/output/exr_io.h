@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "stages/output/exr_header_scan.h"
+
 namespace sl {
 
 // Writes w*h interleaved RGB (row 0 = top) to `path` as an RGB scanline EXR, via a temporary
@@ -18,17 +20,8 @@ struct ExrImage {
     std::map<std::string, std::string> metadata;  // every string attribute of the header
 };
 
-// Reads R, G, B (missing channels read as 0) as float. Throws RuntimeFailure.
-ExrImage read_exr(const std::string& path);
-
-// The header alone, so that a file can be judged before its pixels are allocated.
-struct ExrHeaderInfo {
-    int data_x0 = 0, data_y0 = 0, data_x1 = -1, data_y1 = -1;     // data window, inclusive
-    int display_x0 = 0, display_y0 = 0, display_x1 = -1, display_y1 = -1;
-    std::map<std::string, std::string> channels;  // name -> "half", "float" or "uint"
-    std::map<std::string, std::string> metadata;  // every string attribute
-    bool tiled = false;
-};
-ExrHeaderInfo read_exr_header(const std::string& path);  // Throws RuntimeFailure
+// Reads R, G, B (missing channels read as 0) as float. Only frames shaped as this program writes
+// them are opened (exr_header_scan.h); with `want`, only that size. Throws RuntimeFailure.
+ExrImage read_exr(const std::string& path, ExrSize want = {});
 
 }  // namespace sl
