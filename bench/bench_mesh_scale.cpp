@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <fstream>
 
+#include "foundation/constants.h"
 #include "core/import/resolve_imports.h"
 #include "stages/render/render_context.h"
 #include "tests/common/temp_dir.h"
@@ -35,7 +36,7 @@ sl::test::ModelMesh sphere(int segments) {
     const int rings = segments / 2;
     for (int r = 0; r <= rings; ++r)
         for (int s = 0; s <= segments; ++s) {
-            double th = M_PI * r / rings, ph = 2 * M_PI * s / segments;
+            double th = sl::kPiDouble * r / rings, ph = 2 * sl::kPiDouble * s / segments;
             Vec3 p(static_cast<float>(std::sin(th) * std::cos(ph)), static_cast<float>(std::cos(th)),
                    static_cast<float>(-std::sin(th) * std::sin(ph)));
             m.positions.push_back(p);

@@ -9,7 +9,7 @@
 #include "config/nearest_name.h"
 #include "config/parse_scene.h"
 #include "config/text_util.h"
-#include "core/errors.h"
+#include "foundation/errors.h"
 
 namespace sl {
 

@@ -7,7 +7,7 @@
 #include <cerrno>
 #include <cstring>
 
-#include "core/errors.h"
+#include "foundation/errors.h"
 
 namespace sl {
 namespace {

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "config/text_util.h"
-#include "core/errors.h"
+#include "foundation/errors.h"
 
 namespace sl {
 

@@ -15,8 +15,8 @@
 #include "config/json_reader.h"
 #include "config/limits.h"
 #include "config/text_util.h"
-#include "core/errors.h"
-#include "core/sun_light.h"
+#include "foundation/errors.h"
+#include "config/sun_desc.h"
 
 namespace sl {
 

@@ -3,6 +3,7 @@
 // right = forward x up.
 #include <cmath>
 
+#include "foundation/constants.h"
 #include "config/scene_desc.h"
 
 namespace sl {
@@ -13,7 +14,7 @@ public:
         forward_ = normalize(c.look_at - c.position);
         right_ = normalize(cross(forward_, c.up));
         up_ = cross(right_, forward_);
-        half_h_ = std::tan(c.vfov_deg * 3.14159265358979f / 360.0f);
+        half_h_ = std::tan(c.vfov_deg * kPi / 360.0f);
         half_w_ = half_h_ * static_cast<float>(c.width) / static_cast<float>(c.height);
     }
     Vec3 position() const { return position_; }

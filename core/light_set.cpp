@@ -3,7 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/errors.h"
+#include "foundation/constants.h"
+#include "foundation/errors.h"
 #include "core/sampling.h"
 
 namespace sl {
@@ -20,10 +21,10 @@ LightSet::LightSet(const SceneDesc& scene, Vec3 bounds_min, Vec3 bounds_max) : e
         case LightType::Spot: {
             l.power = d.power;
             // 1 - cos(c) = 2 sin^2(c/2), in double: exact for narrow cones too.
-            double half = 0.5 * d.cone_deg * 3.14159265358979323846 / 180.0;
+            double half = 0.5 * d.cone_deg * kPiDouble / 180.0;
             double one_minus_cos = 2 * std::sin(half) * std::sin(half);
             l.cos_cone = static_cast<float>(1 - one_minus_cos);
-            l.intensity = d.power * static_cast<float>(1 / (2 * 3.14159265358979323846 * one_minus_cos));
+            l.intensity = d.power * static_cast<float>(1 / (2 * kPiDouble * one_minus_cos));
             l.desc.direction = normalize(d.direction);
             break;
         }

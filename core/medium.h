@@ -5,6 +5,7 @@
 // space is vacuum.
 #include <cmath>
 
+#include "foundation/constants.h"
 #include "config/scene_desc.h"
 
 namespace sl {
@@ -56,8 +57,6 @@ public:
     }
     // A new propagation direction for light travelling along unit wi, with pdf = phase.
     Vec3 sample_phase(Vec3 wi, float u1, float u2) const;
-
-    static constexpr float kInv4Pi = 0.0795774715459476678f;
 
 private:
     Vec3 sigma_t_, sigma_s_;

@@ -6,7 +6,7 @@
 #include <filesystem>
 
 #include "config/input_file.h"
-#include "core/errors.h"
+#include "foundation/errors.h"
 #include "core/placement.h"
 
 namespace sl {

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <cstdint>
 
-#include "core/vec3.h"
+#include "foundation/vec3.h"
 
 namespace sl {
 

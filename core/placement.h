@@ -3,12 +3,13 @@
 // (degrees), then translate. One definition for built-in meshes and imports alike.
 #include <cmath>
 
-#include "core/vec3.h"
+#include "foundation/constants.h"
+#include "foundation/vec3.h"
 
 namespace sl {
 
 inline Vec3 rotate_xyz(Vec3 p, Vec3 deg) {
-    const float k = 3.14159265358979f / 180.0f;
+    const float k = kPi / 180.0f;
     float cx = std::cos(deg.x * k), sx = std::sin(deg.x * k);
     p = {p.x, cx * p.y - sx * p.z, sx * p.y + cx * p.z};
     float cy = std::cos(deg.y * k), sy = std::sin(deg.y * k);

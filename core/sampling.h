@@ -2,11 +2,10 @@
 // Warping uniform samples to the directions and points the renderer needs.
 #include <cmath>
 
-#include "core/vec3.h"
+#include "foundation/constants.h"
+#include "foundation/vec3.h"
 
 namespace sl {
-
-inline constexpr float kPi = 3.14159265358979323846f;
 
 // Cosine-weighted direction about unit normal n (pdf = cos/pi).
 inline Vec3 sample_cosine_hemisphere(Vec3 n, float u1, float u2) {

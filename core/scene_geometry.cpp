@@ -4,7 +4,7 @@
 #include <cstring>
 #include <limits>
 
-#include "core/errors.h"
+#include "foundation/errors.h"
 #include "core/mesh_loader.h"
 
 namespace sl {

@@ -4,19 +4,15 @@
 #include <cmath>
 
 #include "core/sampling.h"
+#include "foundation/constants.h"
 
 namespace sl {
-
-namespace {
-constexpr double kPiD = 3.14159265358979323846;
-constexpr double kMetersPerNs = 0.299792458;
-}  // namespace
 
 SunLight::SunLight(const LightDesc& desc, Vec3 lo, Vec3 hi) {
     d_ = normalize(desc.direction);
     make_basis(d_, t_, b_);
     irradiance_ = desc.irradiance;
-    const double half = 0.5 * desc.angle_deg * kPiD / 180.0;
+    const double half = 0.5 * desc.angle_deg * kPiDouble / 180.0;
     sin_half_ = static_cast<float>(std::sin(half));
     if (!(lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z)) return;  // no bounds: no light
     // The bounds' corners along the direction and across it.
@@ -57,7 +53,7 @@ void SunLight::emit(float u1, float u2, float u3, float u4, Vec3& origin, Vec3& 
     origin = t_ * u + b_ * v + d_ * static_cast<float>(h0_ - lead_);
     dir = sample_direction(u3, u4);
     // The wavefront (perpendicular to d) is at dot(x, d) = h0 at t = 0: lead before it, earlier.
-    start_ns = -static_cast<double>(lead_) / (dot(dir, d_) * kMetersPerNs);
+    start_ns = -static_cast<double>(lead_) / (dot(dir, d_) * kSpeedOfLight);
 }
 
 bool SunLight::sample_direct(Vec3 p, Vec3 n, float u1, float u2, Vec3& irradiance, Vec3& to_light, float& distance,
@@ -73,7 +69,7 @@ bool SunLight::sample_direct(Vec3 p, Vec3 n, float u1, float u2, Vec3& irradianc
     // Back to the rectangle, which lies lead before the t = 0 plane.
     const double along = std::max(0.0, dot(p, d_) - h0_) + lead_;
     distance = static_cast<float>(along / cos_a);
-    start_ns = -static_cast<double>(lead_) / (cos_a * kMetersPerNs);
+    start_ns = -static_cast<double>(lead_) / (cos_a * kSpeedOfLight);
     return true;
 }
 

@@ -8,7 +8,7 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "core/errors.h"
+#include "foundation/errors.h"
 
 namespace sl {
 namespace {

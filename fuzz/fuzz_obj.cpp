@@ -5,7 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "core/errors.h"
+#include "foundation/errors.h"
 #include "core/import/imported_file.h"
 #include "fuzz/fuzz_input_file.h"
 #include "fuzz/imported_file_checks.h"

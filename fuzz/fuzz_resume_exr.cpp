@@ -9,7 +9,7 @@
 #include <cstdlib>
 #include <vector>
 
-#include "core/errors.h"
+#include "foundation/errors.h"
 #include "fuzz/fuzz_input_file.h"
 #include "stages/output/exr_frame_check.h"
 #include "stages/output/exr_io.h"

@@ -7,7 +7,7 @@
 
 #include "config/command_line.h"
 #include "config/parse_scene.h"
-#include "core/errors.h"
+#include "foundation/errors.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     std::string text(reinterpret_cast<const char*>(data), size);

@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <regex>
 
-#include "core/errors.h"
+#include "foundation/errors.h"
 
 namespace sl {
 namespace fs = std::filesystem;

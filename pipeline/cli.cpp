@@ -16,7 +16,7 @@
 
 #include "config/command_line.h"
 #include "config/parse_scene.h"
-#include "core/errors.h"
+#include "foundation/errors.h"
 #include "pipeline/distributed/mpi_launch.h"
 #include "pipeline/distributed/rank_start.h"
 #include "config/text_util.h"

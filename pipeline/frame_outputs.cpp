@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <tbb/task_group.h>
 
-#include "core/errors.h"
+#include "foundation/errors.h"
 #include "stages/output/atomic_file.h"
 #include "stages/output/exr_frame_check.h"
 #include "stages/output/exr_io.h"

@@ -8,7 +8,7 @@
 #include <fstream>
 #include <unistd.h>
 
-#include "core/errors.h"
+#include "foundation/errors.h"
 #include "stages/render/photon_map.h"
 #include "stages/render/section_buffer.h"
 #include "stages/render/section_layout.h"

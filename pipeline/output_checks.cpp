@@ -12,7 +12,7 @@
 
 #include "config/run_options.h"
 #include "config/text_util.h"
-#include "core/errors.h"
+#include "foundation/errors.h"
 #include "stages/output/atomic_file.h"
 
 namespace sl {

@@ -3,7 +3,7 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "core/errors.h"
+#include "foundation/errors.h"
 #include "stages/output/exr_frame_check.h"
 
 namespace sl {

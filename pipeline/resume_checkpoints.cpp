@@ -3,7 +3,7 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "core/errors.h"
+#include "foundation/errors.h"
 #include "pipeline/checkpoint.h"
 #include "stages/output/exr_io.h"
 

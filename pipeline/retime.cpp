@@ -10,7 +10,7 @@
 #include "config/limits.h"
 #include "config/parse_scene.h"
 #include "config/text_util.h"
-#include "core/errors.h"
+#include "foundation/errors.h"
 #include "pipeline/frame_outputs.h"
 #include "pipeline/output_checks.h"
 #include "stages/output/npy_cube.h"

@@ -7,7 +7,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "core/errors.h"
+#include "foundation/errors.h"
 #include "stages/output/atomic_file.h"
 
 namespace sl {

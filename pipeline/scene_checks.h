@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "core/vec3.h"
+#include "foundation/vec3.h"
 
 namespace sl {
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "core/errors.h"
+#include "foundation/errors.h"
 #include "core/import/resolve_imports.h"
 #include "pipeline/memory_plan.h"
 #include "pipeline/scene_checks.h"

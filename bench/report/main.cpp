@@ -24,7 +24,7 @@
 #include <vector>
 
 #include "config/parse_scene.h"
-#include "core/errors.h"
+#include "foundation/errors.h"
 #include "report.h"
 
 namespace report {

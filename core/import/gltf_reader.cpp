@@ -12,7 +12,8 @@
 #include <set>
 #include <tuple>
 
-#include "core/errors.h"
+#include "foundation/constants.h"
+#include "foundation/errors.h"
 #include "core/import/imported_file.h"
 #include "core/import/light_mapping.h"
 
@@ -522,7 +523,7 @@ private:
         cam.look_at = cam.position + normalize(fwd);
         cam.up = normalize(up);
         if (c.type == "perspective") {
-            double yfov = c.perspective.yfov * 180.0 / 3.14159265358979;
+            double yfov = c.perspective.yfov * 180.0 / kPiDouble;
             if (yfov > 0 && yfov < 180) cam.vfov_deg = static_cast<float>(yfov);
             if (c.perspective.aspectRatio > 0) {
                 cam.height = 256;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "foundation/constants.h"
 #include "core/sun_light.h"
 
 namespace sl {
@@ -33,22 +34,22 @@ std::optional<LightDesc> map_punctual_light(const PunctualLight& l, std::string&
     d.position = l.position;
     if (l.type == "point") {
         d.type = LightType::Point;
-        d.power = intensity * static_cast<float>(4 * 3.14159265358979323846);
+        d.power = intensity * static_cast<float>(4 * kPiDouble);
     } else if (l.type == "spot") {
         Vec3 dir = l.direction;
         if (!(length(dir) > 0)) { warning = label(l) + ": no direction (left out)"; return std::nullopt; }
         d.type = LightType::Spot;
         d.direction = normalize(dir);
-        double outer = std::clamp(l.outer_cone, 1e-3, 3.14159265358979 / 2);
+        double outer = std::clamp(l.outer_cone, 1e-3, kPiDouble / 2);
         double inner = std::clamp(l.inner_cone, 0.0, outer);
         double cone = 0.5 * (inner + outer);
-        d.cone_deg = static_cast<float>(cone * 180 / 3.14159265358979323846);
+        d.cone_deg = static_cast<float>(cone * 180 / kPiDouble);
         // The same intensity inside a hard cone: power = I 2 pi (1 - cos cone).
         double half = 0.5 * cone;
-        d.power = intensity * static_cast<float>(2 * 3.14159265358979323846 * 2 * std::sin(half) * std::sin(half));
+        d.power = intensity * static_cast<float>(2 * kPiDouble * 2 * std::sin(half) * std::sin(half));
         if (outer - inner > 1e-3)
-            warning = label(l) + ": the falloff from the inner (" + std::to_string(inner * 180 / 3.14159265358979).substr(0, 5) +
-                      " deg) to the outer cone (" + std::to_string(outer * 180 / 3.14159265358979).substr(0, 5) +
+            warning = label(l) + ": the falloff from the inner (" + std::to_string(inner * 180 / kPiDouble).substr(0, 5) +
+                      " deg) to the outer cone (" + std::to_string(outer * 180 / kPiDouble).substr(0, 5) +
                       " deg) is drawn as a hard cone of " + std::to_string(d.cone_deg).substr(0, 5) + " deg";
     } else {
         warning = label(l) + ": unknown type '" + l.type + "' (left out)";

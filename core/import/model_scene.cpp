@@ -4,7 +4,8 @@
 #include <cmath>
 #include <filesystem>
 
-#include "core/errors.h"
+#include "foundation/constants.h"
+#include "foundation/errors.h"
 #include "core/import/mesh_data.h"
 #include "core/import/resolve_imports.h"
 
@@ -51,13 +52,13 @@ SceneDesc scene_for_model(const std::string& path) {
         c.vfov_deg = 40;
         // The bounding sphere fits the view: distance = radius / sin(half the field of view).
         const float radius = 0.5f * diagonal;
-        const float dist = radius / std::sin(0.5f * c.vfov_deg * 3.14159265f / 180.0f);
+        const float dist = radius / std::sin(0.5f * c.vfov_deg * kPi / 180.0f);
         c.look_at = center;
         c.position = center + Vec3(0, 0, dist);
         c.up = {0, 1, 0};
     }
     // Long enough for light to cross the scene three times (and a whole number of ns steps).
-    const double crossing_ns = diagonal / 0.299792458;
+    const double crossing_ns = diagonal / kSpeedOfLight;
     scene.time.start_ns = 0;
     scene.time.end_ns = 3 * crossing_ns;
     return scene;

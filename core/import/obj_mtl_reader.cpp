@@ -11,7 +11,7 @@
 #include <string_view>
 #include <unordered_map>
 
-#include "core/errors.h"
+#include "foundation/errors.h"
 #include "core/import/imported_file.h"
 
 namespace sl {

@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <set>
 
-#include "core/errors.h"
+#include "foundation/errors.h"
 #include "core/import/imported_file.h"
 #include "core/placement.h"
 #include "core/texture.h"

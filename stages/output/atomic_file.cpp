@@ -10,7 +10,7 @@
 #include <filesystem>
 #include <system_error>
 
-#include "core/errors.h"
+#include "foundation/errors.h"
 
 namespace sl {
 

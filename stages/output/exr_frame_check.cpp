@@ -6,7 +6,7 @@
 #include <limits>
 
 #include "config/input_file.h"
-#include "core/errors.h"
+#include "foundation/errors.h"
 #include "stages/output/exr_header_scan.h"
 #include "stages/output/exr_io.h"
 

@@ -8,7 +8,7 @@
 #include <set>
 #include <vector>
 
-#include "core/errors.h"
+#include "foundation/errors.h"
 
 namespace sl {
 

@@ -16,7 +16,7 @@
 #include <exception>
 #include <vector>
 
-#include "core/errors.h"
+#include "foundation/errors.h"
 #include "stages/output/atomic_file.h"
 #include "stages/output/exr_header_scan.h"
 

@@ -8,7 +8,7 @@
 
 #include "config/input_file.h"
 #include "config/text_util.h"
-#include "core/errors.h"
+#include "foundation/errors.h"
 #include "stages/output/atomic_file.h"
 
 namespace sl {

@@ -6,7 +6,7 @@
 #include <climits>
 #include <filesystem>
 
-#include "core/errors.h"
+#include "foundation/errors.h"
 #include "stages/output/atomic_file.h"
 
 namespace sl {

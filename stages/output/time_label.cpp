@@ -9,7 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "core/errors.h"
+#include "foundation/errors.h"
 
 namespace sl {
 

@@ -17,7 +17,7 @@ extern "C" {
 #include <system_error>
 
 #include "config/limits.h"
-#include "core/errors.h"
+#include "foundation/errors.h"
 #include "stages/output/atomic_file.h"
 #include "stages/output/av_common.h"
 

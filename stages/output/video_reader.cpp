@@ -10,7 +10,7 @@ extern "C" {
 #include <cstddef>
 #include <memory>
 
-#include "core/errors.h"
+#include "foundation/errors.h"
 #include "stages/output/atomic_file.h"
 #include "stages/output/av_common.h"
 

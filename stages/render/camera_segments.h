@@ -5,7 +5,7 @@
 // they only gather no in-scattering.
 #include <cstdint>
 
-#include "core/vec3.h"
+#include "foundation/vec3.h"
 
 namespace sl {
 

@@ -5,7 +5,7 @@
 // pixel is gathered by the thread that traced it, in a fixed order: no atomics, repeatable sums.
 #include <cstdint>
 
-#include "core/vec3.h"
+#include "foundation/vec3.h"
 #include "stages/render/photon_map.h"
 #include "stages/render/render_context.h"
 #include "stages/render/section_buffer.h"

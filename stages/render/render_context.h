@@ -4,6 +4,7 @@
 #include <memory>
 #include <optional>
 
+#include "foundation/constants.h"
 #include "config/scene_desc.h"
 #include "core/camera.h"
 #include "core/light_set.h"
@@ -13,8 +14,6 @@
 #include "stages/render/rank_exchange.h"
 
 namespace sl {
-
-inline constexpr double kSpeedOfLight = 0.299792458;  // meters per nanosecond
 
 struct RenderContext {
     explicit RenderContext(const SceneDesc& desc);

@@ -12,7 +12,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/errors.h"
+#include "foundation/errors.h"
 
 namespace sl {
 namespace {

@@ -10,7 +10,7 @@
 #include <span>
 #include <vector>
 
-#include "core/vec3.h"
+#include "foundation/vec3.h"
 
 namespace sl {
 struct VolumePhoton {

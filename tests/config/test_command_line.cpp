@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "config/command_line.h"
-#include "core/errors.h"
+#include "foundation/errors.h"
 
 using namespace sl;
 using Command = RunOptions::Command;

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "config/parse_scene.h"
-#include "core/errors.h"
+#include "foundation/errors.h"
 
 namespace sl {
 namespace {

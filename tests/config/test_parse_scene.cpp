@@ -5,7 +5,7 @@
 #include <fstream>
 
 #include "config/parse_scene.h"
-#include "core/errors.h"
+#include "foundation/errors.h"
 #include "tests/config/scene_fixture.h"
 
 using namespace sl;

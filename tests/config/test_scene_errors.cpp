@@ -2,7 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "config/parse_scene.h"
-#include "core/errors.h"
+#include "foundation/errors.h"
 #include "tests/config/scene_fixture.h"
 
 using namespace sl;

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "foundation/constants.h"
 #include "config/parse_scene.h"
 
 using namespace sl;
@@ -35,8 +36,8 @@ TEST(SunScene, IrradianceAndDirectionAsGiven) {
 TEST(SunScene, RadianceOfTheDiscBecomesIrradiance) {
     // A disc of 0.53 degrees: solid angle ~ 6.72e-5 sr; L = 1.5e7 W/sr/m^2 gives ~1008 W/m^2.
     SceneDesc s = with_light(R"({"type": "sun", "direction": [1, -1, 0], "angle_deg": 0.53, "radiance": [1.5e7, 1.5e7, 1.5e7]})");
-    const double half = 0.5 * 0.53 * M_PI / 180;
-    const double want = 1.5e7 * M_PI * std::sin(half) * std::sin(half);
+    const double half = 0.5 * 0.53 * sl::kPiDouble / 180;
+    const double want = 1.5e7 * sl::kPiDouble * std::sin(half) * std::sin(half);
     EXPECT_NEAR(s.lights[0].irradiance.x, want, 1e-5 * want);
     EXPECT_NEAR(want, 1008.5, 1.0);
 }

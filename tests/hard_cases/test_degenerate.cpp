@@ -3,7 +3,7 @@
 // triangles is rejected); a scene with degenerate triangles renders without NaN or Inf.
 #include <fstream>
 
-#include "core/errors.h"
+#include "foundation/errors.h"
 #include "core/scene_geometry.h"
 #include "hard_helpers.h"
 

@@ -3,7 +3,7 @@
 // 1e-4 rad it must match the analytic irradiance, and never leak to the other side).
 #include <cmath>
 
-#include "core/errors.h"
+#include "foundation/errors.h"
 #include "core/camera.h"
 #include "core/sampling.h"
 #include "hard_helpers.h"

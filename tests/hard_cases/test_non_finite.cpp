@@ -4,7 +4,7 @@
 #include <cmath>
 #include <functional>
 
-#include "core/errors.h"
+#include "foundation/errors.h"
 #include "hard_helpers.h"
 
 namespace sl::hard {

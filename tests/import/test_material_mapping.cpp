@@ -4,7 +4,7 @@
 
 #include <fstream>
 
-#include "core/errors.h"
+#include "foundation/errors.h"
 #include "core/import/imported_file.h"
 #include "core/texture.h"
 #include "tests/common/temp_dir.h"

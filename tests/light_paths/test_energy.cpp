@@ -18,6 +18,7 @@
 
 #include <cmath>
 
+#include "foundation/constants.h"
 #include "light_paths_helpers.h"
 
 namespace sl {
@@ -69,13 +70,13 @@ double indirect_quadrature(Vec3 x, float rho_w) {
             Vec3 y{float(-1 + (i + 0.5) * h), float((j + 0.5) * h), -1};
             Vec3 ly = y - kLight;
             double dl2 = dot(ly, ly);
-            double Ew = kP / (4 * M_PI) * (-ly.z / std::sqrt(dl2)) / dl2;  // wall normal +z
+            double Ew = kP / (4 * sl::kPiDouble) * (-ly.z / std::sqrt(dl2)) / dl2;  // wall normal +z
             Vec3 v = x - y;
             double d2 = dot(v, v), d = std::sqrt(d2);
             double cos_y = v.z / d, cos_x = -v.y / d;  // floor normal +y
-            sum += rho_w / M_PI * Ew * cos_x * cos_y / d2 * h * h;
+            sum += rho_w / sl::kPiDouble * Ew * cos_x * cos_y / d2 * h * h;
         }
-    return kRhoF / M_PI * sum;
+    return kRhoF / sl::kPiDouble * sum;
 }
 
 double sum_at(const std::vector<float>& img, const std::vector<std::pair<size_t, Vec3>>& px) {

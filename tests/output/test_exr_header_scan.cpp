@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "core/errors.h"
+#include "foundation/errors.h"
 #include "stages/output/exr_io.h"
 #include "tests/common/temp_dir.h"
 

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <vector>
 
-#include "core/errors.h"
+#include "foundation/errors.h"
 #include "tests/common/temp_dir.h"
 
 namespace {

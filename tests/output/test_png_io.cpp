@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "core/errors.h"
+#include "foundation/errors.h"
 #include "tests/common/temp_dir.h"
 
 TEST(PngIo, WritesWhatOiioReadsBack) {

@@ -12,7 +12,7 @@ extern "C" {
 #include <string>
 #include <vector>
 
-#include "core/errors.h"
+#include "foundation/errors.h"
 #include "stages/output/video_encoder.h"
 #include "stages/output/video_reader.h"
 #include "tests/common/temp_dir.h"

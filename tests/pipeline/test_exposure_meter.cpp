@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "foundation/constants.h"
 #include "config/parse_scene.h"
 #include "pipeline/exposure.h"
 #include "stages/render/render_context.h"
@@ -22,7 +23,7 @@ struct Projected {
 Projected project(const CameraDesc& c, Vec3 p) {
     const Vec3 f = normalize(c.look_at - c.position), r = normalize(cross(f, c.up)), u = cross(r, f);
     const Vec3 d = p - c.position;
-    const double half_h = std::tan(c.vfov_deg * M_PI / 360.0), half_w = half_h * c.width / c.height;
+    const double half_h = std::tan(c.vfov_deg * sl::kPiDouble / 360.0), half_w = half_h * c.width / c.height;
     const double z = dot(d, f);
     return {(dot(d, r) / z / half_w + 1) * c.width / 2, (1 - dot(d, u) / z / half_h) * c.height / 2};
 }

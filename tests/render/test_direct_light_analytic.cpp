@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "foundation/constants.h"
 #include "render_helpers.h"
 #include "scenes_for_tests.h"
 
@@ -22,14 +23,14 @@ Vec3 on_plane(const PinholeCamera& cam, float fx, float fy) {
 }
 
 double expected_radiance(const PinholeCamera& cam, int px, int py) {
-    const double I = kPower / (4 * M_PI);
+    const double I = kPower / (4 * sl::kPiDouble);
     const int n = 8;  // the pixel average, by a midpoint rule over n x n points
     double sum = 0;
     for (int i = 0; i < n; ++i)
         for (int j = 0; j < n; ++j) {
             Vec3 x = on_plane(cam, px + (i + 0.5f) / n, py + (j + 0.5f) / n);
             double r2 = x.x * x.x + x.z * x.z + kLightH * kLightH, r = std::sqrt(r2);
-            sum += kRho / M_PI * I * (kLightH / r) / r2;
+            sum += kRho / sl::kPiDouble * I * (kLightH / r) / r2;
         }
     return sum / (n * n);
 }

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "foundation/constants.h"
 #include "core/medium.h"
 #include "core/rng.h"
 #include "stages/render/volume_photons.h"
@@ -121,7 +122,7 @@ TEST(MediumCore, HenyeyGreensteinSamplingMatchesItsDensity) {
         EXPECT_NEAR(mean_cos / n, g, 0.01) << "g = " << g;  // HG's mean cosine is g
         for (int b = 0; b < bins; ++b) {  // bin probability = 2 pi int p(mu) dmu
             double a = -1 + 2.0 * b / bins, e = a + 2.0 / bins, want = 0;
-            for (int k = 0; k < 200; ++k) want += 2 * M_PI * m.phase(static_cast<float>(a + (k + 0.5) * (e - a) / 200)) * (e - a) / 200;
+            for (int k = 0; k < 200; ++k) want += 2 * sl::kPiDouble * m.phase(static_cast<float>(a + (k + 0.5) * (e - a) / 200)) * (e - a) / 200;
             EXPECT_NEAR(hist[b] / n, want, 0.004 + 0.02 * want) << "g = " << g << " bin " << b;
         }
     }

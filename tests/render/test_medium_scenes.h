@@ -5,6 +5,7 @@
 #include <functional>
 #include <vector>
 
+#include "foundation/constants.h"
 #include "config/scene_desc.h"
 #include "core/camera.h"
 
@@ -55,7 +56,7 @@ struct SingleScatterRef {
 
     double phase(double cos_t) const {
         double d = 1 + g * g - 2 * g * cos_t;
-        return (1 - g * g) / (4 * M_PI * d * std::sqrt(d));
+        return (1 - g * g) / (4 * sl::kPiDouble * d * std::sqrt(d));
     }
     double exit_distance(Vec3 o, Vec3 d) const {
         double t1 = 1e30;

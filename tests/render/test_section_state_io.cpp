@@ -9,7 +9,7 @@
 #include <fstream>
 #include <random>
 
-#include "core/errors.h"
+#include "foundation/errors.h"
 #include "stages/render/section_state_io.h"
 #include "tests/common/temp_dir.h"
 

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "core/errors.h"
+#include "foundation/errors.h"
 #include "core/light_set.h"
 #include "core/sun_light.h"
 #include "render_helpers.h"
