@@ -25,7 +25,5 @@ inline constexpr double kMaxEmission = 1e30;
 inline constexpr double kMinSpotConeDeg = 0.1;
 // A sun's angular diameter: a wider "sun" is an area light, not a directional one.
 inline constexpr double kMaxSunAngleDeg = 45;
-// Relative tolerance when checking that a pulse width is a whole number of frames.
-inline constexpr double kPulseTolerance = 1e-6;
 
 }  // namespace sl::limits

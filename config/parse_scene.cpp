@@ -14,6 +14,7 @@
 #include "config/input_file.h"
 #include "config/json_reader.h"
 #include "config/limits.h"
+#include "config/pulse_width.h"
 #include "config/text_util.h"
 #include "foundation/errors.h"
 #include "config/sun_desc.h"
@@ -25,25 +26,6 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr size_t kMaxSceneFileBytes = size_t(64) << 20;  // a scene file is small; meshes are apart
-
-// Checks the pulse width against the frame width Δ and sets width_frames.
-// Returns what is wrong, or nothing when the width is fine.
-std::optional<std::string> check_pulse_width(const TimeDesc& time, EmissionDesc& e) {
-    e.width_frames = 1;
-    if (e.mode != EmissionMode::Pulse || e.width_ns == 0) return std::nullopt;
-    const double delta = time.frame_ns();
-    const double m = e.width_ns / delta;
-    const double whole = std::round(m);
-    if (!(whole >= 1) || std::abs(m - whole) > limits::kPulseTolerance * m)
-        return "pulse width " + format_number(e.width_ns) +
-               " ns is not a whole multiple of the frame width (end_ns - start_ns)/frames = " +
-               format_number(delta) + " ns";
-    if (whole > limits::kMaxPulseFrames)
-        return "pulse width " + format_number(e.width_ns) + " ns is more than " +
-               std::to_string(limits::kMaxPulseFrames) + " frame widths";
-    e.width_frames = static_cast<int>(whole);
-    return std::nullopt;
-}
 
 // Turns checked JSON into a SceneDesc, converting lengths to meters on the way.
 class SceneParser {
@@ -391,7 +373,7 @@ private:
         if (!(td.end_ns > td.start_ns))
             t.fail("end_ns", "must be greater than start_ns (" + format_number(td.start_ns) +
                                  "), got " + format_number(td.end_ns));
-        if (!(std::isfinite(td.frame_ns()) && td.frame_ns() > 0))
+        if (!Timeline{td.start_ns, td.end_ns, td.frames}.has_valid_delta())
             t.fail("end_ns", "end_ns - start_ns is out of range");
     }
 
@@ -430,18 +412,6 @@ private:
     std::map<std::string, int> material_index_;
 };
 
-[[noreturn]] void command_line_error(std::string_view flag, const std::string& what) {
-    throw InputError("command line: " + std::string(flag) + ": " + what);
-}
-
-template <class T>
-T in_range(std::string_view flag, T v, T lo, T hi) {
-    if (v < lo || v > hi)
-        command_line_error(flag, "must be an integer in " + std::to_string(lo) + ".." +
-                                     std::to_string(hi) + ", got " + std::to_string(v));
-    return v;
-}
-
 }  // namespace
 
 SceneDesc parse_scene_text(const std::string& text, const std::string& source_name,
@@ -460,40 +430,6 @@ SceneDesc parse_scene_file(const std::string& path) {
 
 SceneDesc parse_default_scene() {
     return parse_scene_text(default_scene_json(), "<default>", "");
-}
-
-EmissionDesc parse_emission_option(const std::string& spec) {
-    EmissionDesc e;
-    if (spec == "constant") return e;
-    e.mode = EmissionMode::Pulse;
-    if (spec == "pulse") return e;
-    const std::string prefix = "pulse:";
-    if (spec.rfind(prefix, 0) != 0)
-        command_line_error("--emission", "must be constant, pulse or pulse:WIDTH_NS, got '" +
-                                             printable(spec) + "'");
-    std::optional<double> w = parse_whole<double>(std::string_view(spec).substr(prefix.size()));
-    if (!w || !std::isfinite(*w) || !(*w > 0))
-        command_line_error("--emission",
-                           "the pulse width must be a finite number of ns > 0, got '" +
-                               printable(spec.substr(prefix.size())) + "'");
-    e.width_ns = *w;
-    return e;
-}
-
-void apply_overrides(SceneDesc& scene, const RenderOverrides& o) {
-    if (o.frames) scene.time.frames = in_range("--frames", *o.frames, 1, limits::kMaxFrames);
-    if (o.passes) scene.render.passes = in_range("--passes", *o.passes, 1, limits::kMaxPasses);
-    if (o.width) scene.camera.width = in_range("--width", *o.width, 1, limits::kMaxImageSide);
-    if (o.height) scene.camera.height = in_range("--height", *o.height, 1, limits::kMaxImageSide);
-    if (o.photons)
-        scene.render.photons_per_pass =
-            in_range<int64_t>("--photons", *o.photons, 1, limits::kMaxPhotonsPerPass);
-    if (o.seed) scene.render.seed = *o.seed;
-    if (o.camera_tof) scene.render.camera_tof = *o.camera_tof;
-    if (o.emission) scene.emission = parse_emission_option(*o.emission);
-    // New frames or a new width: the pulse must still be a whole number of frames.
-    if (auto problem = check_pulse_width(scene.time, scene.emission))
-        command_line_error(o.emission ? "--emission" : "--frames", *problem);
 }
 
 }  // namespace sl

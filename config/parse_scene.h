@@ -5,7 +5,7 @@
 // (the caller prefixes "error: "). The result is in meters, nanoseconds and per-meter units.
 #include <string>
 
-#include "config/run_options.h"
+#include "config/overrides.h"  // apply_overrides: most callers parse, then override
 #include "config/scene_desc.h"
 
 namespace sl {
@@ -20,13 +20,5 @@ SceneDesc parse_scene_text(const std::string& text, const std::string& source_na
 
 // The built-in demo scene (samples/cornell_box.json compiled in), source "<default>".
 SceneDesc parse_default_scene();
-
-// Applies command-line overrides and re-validates what they affect. Bad values throw
-// InputError "command line: --frames: ...".
-void apply_overrides(SceneDesc& scene, const RenderOverrides& o);
-
-// Parses an --emission value: "constant", "pulse" or "pulse:WIDTH_NS" (width_frames is left
-// for apply_overrides to check against the frame width). Throws "command line: --emission: ...".
-EmissionDesc parse_emission_option(const std::string& spec);
 
 }  // namespace sl

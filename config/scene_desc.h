@@ -3,12 +3,14 @@
 // nanoseconds, per-meter coefficients). Everything downstream reads only these.
 // Filled by config/parse_scene.h; field defaults are the scene file's defaults for omitted keys
 // (defaults are in meters: `units` scales only what the file says).
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "foundation/timeline.h"
 #include "foundation/vec3.h"
 
 namespace sl {
@@ -103,9 +105,7 @@ struct TimeDesc {
     double end_ns = 12;
     int frames = 48;
     double fps = 24;
-
-    // Δ, the width of one frame in ns (> 0 after validation).
-    double frame_ns() const { return (end_ns - start_ns) / frames; }
+    // Δ, the edges and the buckets: timeline_of(scene) below (foundation/timeline.h).
 };
 
 enum class EmissionMode { Constant, Pulse };
@@ -113,8 +113,9 @@ enum class EmissionMode { Constant, Pulse };
 struct EmissionDesc {
     EmissionMode mode = EmissionMode::Constant;
     double width_ns = 0;  // pulse width as given; 0 (omitted) means one frame width Δ
-    // The pulse width in frames, m = width_ns / Δ (validated to be whole, within 1e-6
-    // relative), or 1 when width_ns is 0. Use this, not width_ns, to count buckets.
+    // The pulse width in frames, m = width_ns / Δ (validated to be whole by
+    // Timeline::whole_frames), or 1 when width_ns is 0. Buckets are counted by
+    // timeline_of(scene).pulse_buckets, which reads this.
     int width_frames = 1;
 };
 
@@ -147,5 +148,16 @@ struct SceneDesc {
     // that no output may be one of them. Importers append what they read.
     std::vector<std::string> input_files;
 };
+
+// The scene's time axis: the parsed numbers handed to the Timeline, which alone computes with
+// them (a pulse spans width_frames buckets; constant emission, one).
+inline Timeline timeline_of(const SceneDesc& s) {
+    Timeline t;
+    t.start_ns = s.time.start_ns;
+    t.end_ns = s.time.end_ns;
+    t.frames = s.time.frames;
+    t.pulse_buckets = s.emission.mode == EmissionMode::Pulse ? std::max(1, s.emission.width_frames) : 1;
+    return t;
+}
 
 }  // namespace sl

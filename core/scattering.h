@@ -3,7 +3,7 @@
 // two-sided Lambertian; mirrors reflect; dielectrics reflect or refract by Fresnel.
 #include <cmath>
 
-#include "config/scene_desc.h"
+#include "core/material_table.h"
 #include "core/rng.h"
 #include "core/sampling.h"
 
@@ -29,7 +29,7 @@ struct SpecularBounce {
 
 // A specular event (mirror or dielectric) for a path arriving along d at a surface with unit
 // geometric normal n. For dielectrics the choice of reflection or refraction is sampled.
-inline SpecularBounce specular_bounce(const MaterialDesc& m, Vec3 d, Vec3 n, bool inside, Rng& rng) {
+inline SpecularBounce specular_bounce(const SurfaceMaterial& m, Vec3 d, Vec3 n, bool inside, Rng& rng) {
     Vec3 nf = dot(d, n) < 0 ? n : -n;  // faces the arriving path
     if (m.type == MaterialType::Mirror) return {reflect(d, nf), m.reflectance, inside};
     float eta = inside ? m.ior : 1.0f / m.ior;

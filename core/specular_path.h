@@ -9,7 +9,7 @@
 namespace sl {
 
 // Returns the throughput weight of the event; updates o, d, inside and inside_ior.
-inline Vec3 follow_specular(const MaterialDesc& m, const SurfaceHit& hit, Vec3& o, Vec3& d, bool& inside,
+inline Vec3 follow_specular(const SurfaceMaterial& m, const SurfaceHit& hit, Vec3& o, Vec3& d, bool& inside,
                             float& inside_ior, Rng& rng) {
     const SpecularBounce b = specular_bounce(m, d, hit.normal, inside, rng);
     if (b.inside_after != inside) inside_ior = m.ior;

@@ -226,10 +226,8 @@ int render(RunOptions o, const std::vector<std::string>& argv) {
     out.cube = o.cube_path;
     out.width = scene.camera.width;
     out.height = scene.camera.height;
-    out.frames = scene.time.frames;
     out.fps = scene.time.fps;
-    out.start_ns = scene.time.start_ns;
-    out.end_ns = scene.time.end_ns;
+    out.timeline = ctx.timeline;
     out.exposure = o.exposure;
     out.tone = o.tone;
     out.label_time = o.label_time;

@@ -57,9 +57,9 @@ void write_cube_sidecar(const OutputSettings& s) {
     j["layout"] = "float32 radiance (W sr^-1 m^-2), shape (frames + 2, height, width, 3): plane 0 holds what arrived "
                   "before start_ns, plane k + 1 what arrived in frame k, the last plane what arrived at or after end_ns; "
                   "the ambient term is not included";
-    j["start_ns"] = s.start_ns;
-    j["end_ns"] = s.end_ns;
-    j["frames"] = s.frames;
+    j["start_ns"] = s.timeline.start_ns;
+    j["end_ns"] = s.timeline.end_ns;
+    j["frames"] = s.timeline.frames;
     j["fps"] = s.fps;
     j["width"] = s.width;
     j["height"] = s.height;
@@ -92,7 +92,7 @@ FrameOutputs::FrameOutputs(const OutputSettings& s) : settings_(s), exposure_(s.
         v.fps = s.fps;
         encoder_ = VideoEncoder::open(v);
     }
-    if (!s.cube.empty()) cube_ = std::make_unique<NpyCubeWriter>(s.cube, s.frames + 2, s.height, s.width);
+    if (!s.cube.empty()) cube_ = std::make_unique<NpyCubeWriter>(s.cube, s.timeline.frames + 2, s.height, s.width);
     if (s.label_time && (encoder_ || !s.png_dir.empty())) label_ = std::make_unique<TimeLabel>(s.width, s.height);
     rgb8_.resize(static_cast<size_t>(s.width) * s.height * 3);
 }
@@ -112,11 +112,10 @@ void FrameOutputs::write_frame(int index, const std::vector<float>& rgb, bool on
         exr.run([&] {
             std::map<std::string, std::string> meta = settings_.metadata;
             for (const auto& [k, v] : extra) meta[k] = v;
-            double delta = (settings_.end_ns - settings_.start_ns) / std::max(1, settings_.frames);
             meta[kFrameIndexKey] = std::to_string(index);
             meta[kChecksumKey] = pixel_checksum(rgb.data(), rgb.size());  // --resume verifies it
-            meta["slowlight:frame_start_ns"] = exact(settings_.start_ns + index * delta);
-            meta["slowlight:frame_end_ns"] = exact(settings_.start_ns + (index + 1) * delta);
+            meta["slowlight:frame_start_ns"] = exact(settings_.timeline.edge(index));
+            meta["slowlight:frame_end_ns"] = exact(settings_.timeline.edge(index + 1));
             // The exposure and curve the video and PNG frames were made with (linear data here).
             if (exposure_) meta["slowlight:exposure"] = exact(frame_exposure(index));
             meta["slowlight:tone"] = tone_name(settings_.tone);
@@ -125,10 +124,8 @@ void FrameOutputs::write_frame(int index, const std::vector<float>& rgb, bool on
     try {
         if (encoder_ || !settings_.png_dir.empty()) {
             tone_map_srgb8(rgb.data(), w, h, frame_exposure(index), rgb8_.data(), settings_.tone);
-            if (label_) {
-                const double delta = (settings_.end_ns - settings_.start_ns) / std::max(1, settings_.frames);
-                label_->burn(rgb8_.data(), format_frame_time(settings_.start_ns + (index + 1) * delta, delta));
-            }
+            if (label_)  // the time at the frame's end: everything up to then has arrived
+                label_->burn(rgb8_.data(), format_frame_time(settings_.timeline.edge(index + 1), settings_.timeline.delta()));
             if (!settings_.png_dir.empty())
                 seconds_png += timed([&] { write_png(numbered(settings_.png_dir, "png", index), w, h, rgb8_.data()); });
             if (encoder_) seconds_video += timed([&] { encoder_->write_frame(rgb8_.data()); });
@@ -167,7 +164,7 @@ std::string FrameOutputs::summary() const {
     if (encoder_) add((settings_.video == "-" ? std::string("YUV4MPEG2 to stdout") : settings_.video) + " (" + n + ")");
     if (!settings_.exr_dir.empty()) add(settings_.exr_dir + "/ (" + n + " as EXR, and steady.exr)");
     if (!settings_.png_dir.empty()) add(settings_.png_dir + "/ (" + n + " as PNG, and steady.png)");
-    if (cube_ && cube_->planes_written() == settings_.frames + 2) add(settings_.cube + " (the cube, and its .json)");
+    if (cube_ && cube_->planes_written() == settings_.timeline.frames + 2) add(settings_.cube + " (the cube, and its .json)");
     return s;
 }
 
@@ -177,7 +174,7 @@ void FrameOutputs::write_cube_plane(const std::vector<float>& rgb) {
 
 void FrameOutputs::finish() {
     if (encoder_) seconds_video += timed([&] { encoder_->finish(); });
-    if (cube_ && cube_->planes_written() == settings_.frames + 2) {
+    if (cube_ && cube_->planes_written() == settings_.timeline.frames + 2) {
         cube_->finish();
         write_cube_sidecar(settings_);
     }

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "config/run_options.h"
+#include "foundation/timeline.h"
 #include "pipeline/exposure.h"
 #include "stages/output/exr_header_scan.h"
 #include "stages/output/npy_cube.h"
@@ -23,8 +24,9 @@ struct OutputSettings {
     std::string video;  // "" for none, "-" for stdout
     std::string exr_dir, png_dir;
     std::string cube;   // "" for none
-    int width = 0, height = 0, frames = 0;
-    double fps = 24, start_ns = 0, end_ns = 0;
+    int width = 0, height = 0;
+    double fps = 24;
+    Timeline timeline;  // the frames and their edges (EXR headers, time labels, the cube's side-car)
     std::optional<double> exposure;              // fixed by the user
     ToneCurve tone = ToneCurve::Linear;
     bool label_time = false;                     // --label time on video and PNG frames

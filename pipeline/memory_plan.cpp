@@ -15,10 +15,6 @@
 
 namespace sl {
 
-int pulse_bucket_count(const SceneDesc& scene) {
-    return scene.emission.mode == EmissionMode::Pulse ? std::max(1, scene.emission.width_frames) : 1;
-}
-
 static uint64_t current_rss_bytes() {
     std::ifstream statm("/proc/self/statm");
     uint64_t size = 0, resident = 0;
@@ -31,8 +27,8 @@ static size_t pixel_count(const SceneDesc& s) {
 }
 
 uint64_t section_buffer_bytes(const SceneDesc& scene, int sections, int ranks) {
-    const Timeline tl{scene.time.start_ns, scene.time.end_ns, scene.time.frames};
-    const int slots = max_section_slots(tl, scene.emission.mode, pulse_bucket_count(scene), sections);
+    const Timeline tl = timeline_of(scene);
+    const int slots = max_section_slots(tl, scene.emission.mode, tl.pulse_buckets, sections);
     const size_t pixels = PixelShare{0, std::max(1, ranks), pixel_count(scene)}.count();  // rank 0 has the most
     return SectionBuffer::bytes_needed(pixels, slots, !is_black(scene.render.ambient));
 }

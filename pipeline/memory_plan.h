@@ -19,7 +19,6 @@ struct MemoryPlan {
     uint64_t buffers_in_flight() const { return buffer_bytes_per_section * (overlap ? 2 : 1); }
 };
 
-int pulse_bucket_count(const SceneDesc& scene);
 // With `ranks` MPI ranks, the buffers of one rank (the one with the most pixels).
 uint64_t section_buffer_bytes(const SceneDesc& scene, int sections, int ranks = 1);
 uint64_t fixed_overhead_bytes(const SceneDesc& scene);

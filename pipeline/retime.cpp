@@ -9,6 +9,7 @@
 #include "config/json_reader.h"
 #include "config/limits.h"
 #include "config/parse_scene.h"
+#include "config/pulse_width.h"
 #include "config/text_util.h"
 #include "foundation/errors.h"
 #include "pipeline/frame_outputs.h"
@@ -57,7 +58,7 @@ CubeInfo read_sidecar(const std::string& cube_path) {
         }
         if (!ok) top.fail("emitter_pixels", "must be a list of [first pixel, count] runs inside the image");
     }
-    if (!(c.end_ns > c.start_ns) || !std::isfinite((c.end_ns - c.start_ns) / c.frames))
+    if (!Timeline{c.start_ns, c.end_ns, c.frames}.has_valid_delta())
         top.fail("end_ns", "must be greater than start_ns (" + format_number(c.start_ns) + "), got " +
                                format_number(c.end_ns));
     return c;
@@ -79,15 +80,11 @@ int retime(const RunOptions& o) {
 
     EmissionDesc emission;
     if (ov.emission) emission = parse_emission_option(*ov.emission);
-    const double delta = (info.end_ns - info.start_ns) / info.frames;
-    int width_buckets = 1;
-    if (emission.mode == EmissionMode::Pulse && emission.width_ns > 0) {
-        double m = emission.width_ns / delta;
-        if (std::abs(m - std::round(m)) > 1e-6 * m || std::round(m) < 1)
-            throw InputError("command line: --emission: the pulse width must be a multiple of the bucket width " +
-                             std::to_string(delta) + " ns");
-        width_buckets = static_cast<int>(std::round(m));
-    }
+    // The same whole-frames check as a scene's pulse width, against the cube's timeline.
+    const TimeDesc time{info.start_ns, info.end_ns, info.frames, info.fps};
+    if (auto problem = check_pulse_width(time, emission)) command_line_error("--emission", *problem);
+    const Timeline timeline{info.start_ns, info.end_ns, info.frames,
+                            emission.mode == EmissionMode::Pulse ? emission.width_frames : 1};
 
     const size_t pixels = static_cast<size_t>(cube.width) * cube.height, values = pixels * 3;
     std::vector<float> steady(values, 0.0f);
@@ -100,10 +97,8 @@ int retime(const RunOptions& o) {
     out.png_dir = o.png_dir;
     out.width = cube.width;
     out.height = cube.height;
-    out.frames = info.frames;
     out.fps = info.fps;
-    out.start_ns = info.start_ns;
-    out.end_ns = info.end_ns;
+    out.timeline = timeline;
     out.exposure = o.exposure;
     out.tone = o.tone;
     out.label_time = o.label_time;
@@ -121,7 +116,7 @@ int retime(const RunOptions& o) {
         } else {
             // Plane j + 1 holds bucket j; the pulse frame k sums buckets k - m + 1 .. k.
             std::fill(frame.begin(), frame.end(), 0.0f);
-            for (int j = std::max(0, k - width_buckets + 1); j <= k; ++j)
+            for (int j = std::max(0, k - timeline.pulse_buckets + 1); j <= k; ++j)
                 for (size_t i = 0; i < values; ++i) frame[i] += cube.plane(j + 1)[i];
         }
     };

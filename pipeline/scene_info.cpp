@@ -22,7 +22,7 @@ std::string fixed(double v, int decimals) {
 
 void print_scene_info(std::ostream& out, std::ostream& err, const SceneDesc& s, const RunOptions& options) {
     const int ranks = std::max(1, options.ranks);  // with MPI ranks, memory is per rank
-    const double delta = (s.time.end_ns - s.time.start_ns) / s.time.frames;
+    const double delta = timeline_of(s).delta();
     RenderContext ctx(s);
     SceneFacts f = scene_facts(ctx);
     out << "scene:      " << s.source << "\n"

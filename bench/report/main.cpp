@@ -303,8 +303,7 @@ int main(int argc, char** argv) {
     for (int f : o.table_frames) ctx_for[f] = context(f, o.seed);
     if (!ctx_for.count(frames)) ctx_for[frames] = context(frames, o.seed);
     const sl::RenderContext& ladder_ctx = *ctx_for[frames];
-    rep.timeline_start = ladder_ctx.timeline.start_ns;
-    rep.timeline_delta = ladder_ctx.timeline.delta();
+    rep.timeline = ladder_ctx.timeline;
     progress("%s: %dx%d, %d frames, %lld photons/pass, alpha %.4g, %d threads; writing to %s",
              rep.scene_name.c_str(), o.width, o.height, frames, static_cast<long long>(o.photons), rep.alpha,
              o.threads, out_dir.string().c_str());

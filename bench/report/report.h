@@ -5,6 +5,7 @@
 #include <utility>
 #include <vector>
 
+#include "foundation/timeline.h"
 #include "runs.h"
 
 namespace report {
@@ -72,7 +73,7 @@ struct Report {
     int64_t photons = 0;
     double alpha = 0;
     int table_passes = 0, rounds = 0, fbf_full_max = 0, fbf_ladder_max = 0;
-    double timeline_start = 0, timeline_delta = 0;
+    sl::Timeline timeline;  // the ladder's time axis: frame edges in the tables and sheets
     Machine machine;
     Reference ref;
     std::vector<LadderPoint> ladder;

@@ -100,7 +100,7 @@ void write_csvs(const Report& r, const fs::path& dir) {
     for (const LadderPoint& p : r.ladder)
         for (size_t k = 0; k < p.frame_rmse.size(); ++k)
             fr << fmt("%s,%d,%zu,%.6g,%.6g,%.6g,%.6g\n", name(p.strategy), p.passes, k,
-                      r.timeline_start + k * r.timeline_delta, r.timeline_start + (k + 1) * r.timeline_delta,
+                      r.timeline.edge(static_cast<int64_t>(k)), r.timeline.edge(static_cast<int64_t>(k) + 1),
                       p.frame_rmse[k], mean(r.ref.frames[k]));
     write_file(dir / "frame_rmse.csv", fr.str());
 
@@ -156,7 +156,7 @@ std::string markdown(const Report& r, const Fits& f) {
       << " used. Load average (1/5/15 min) " << r.machine.load_before << " at the start, " << r.machine.load_after
       << " at the end (other work shares this machine: times are noisy).\n";
     m << fmt("- Scene `%s` at %dx%d, %d frames of %.4g ns from %.4g ns, %lld photons per pass, alpha %.4g.\n",
-             r.scene_path.c_str(), r.width, r.height, r.frames, r.timeline_delta, r.timeline_start,
+             r.scene_path.c_str(), r.width, r.height, r.frames, r.timeline.delta(), r.timeline.start_ns,
              static_cast<long long>(r.photons), r.alpha);
     m << fmt("- Reference: the average of two single-convergence runs of %d passes with their own seeds "
              "(%.0f s). Their difference gives the reference's own noise (relative RMSE of the steady image "
@@ -415,10 +415,10 @@ void write_canvas(const fs::path& p, const Canvas& c) { sl::write_png(p.string()
 void write_sheets(const Report& r, const fs::path& dir) {
     const double exposure = sl::exposure_from_steady(r.ref.steady.data(), r.width, r.height);
     // Enough decimals to tell neighbouring frame edges apart.
-    const int digits = std::clamp(static_cast<int>(std::ceil(-std::log10(r.timeline_delta))) + 1, 0, 6);
+    const int digits = std::clamp(static_cast<int>(std::ceil(-std::log10(r.timeline.delta()))) + 1, 0, 6);
     std::vector<Tile> tiles;
     for (size_t k = 0; k < r.ref.frames.size(); ++k) {
-        double a = r.timeline_start + k * r.timeline_delta, b = a + r.timeline_delta;
+        const double a = r.timeline.edge(static_cast<int64_t>(k)), b = r.timeline.edge(static_cast<int64_t>(k) + 1);
         tiles.push_back({&r.ref.frames[k], fmt("%.*f-%.*f ns", digits, a, digits, b)});
     }
     // About 1.5 times as many columns as rows, and full rows where a divisor allows it.

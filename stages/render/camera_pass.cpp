@@ -77,21 +77,21 @@ struct PixelTracer {
             if (!found) return;
             leg_ns += hit.t * (inside ? inside_ior : 1.0f) / kSpeedOfLight;
             if (hit.light >= 0) {  // an emitter seen directly (or through specular surfaces)
-                const LightDesc& l = sc.lights[hit.light];
-                if (dot(d, cross(l.edge1, l.edge2)) < 0)
-                    deposit(buffer, ctx.timeline, local, tof ? leg_ns : 0.0, beta * l.radiance);
+                const size_t l = static_cast<size_t>(hit.light);
+                if (ctx.lights.quad_front_seen(l, d))
+                    deposit(buffer, ctx.timeline, local, tof ? leg_ns : 0.0, beta * ctx.lights.quad_radiance(l));
                 return;
             }
-            const MaterialDesc& m = sc.materials[hit.material];
+            const SurfaceMaterial& m = ctx.materials[hit.material];
             const bool toward = dot(d, hit.normal) < 0;
             Vec3 nf = toward ? hit.normal : -hit.normal;
             if (m.emits()) {  // an emissive mesh seen directly (or through specular surfaces)
-                Vec3 le = emission_at(sc, m, hit, d);
+                Vec3 le = emission_at(m, hit, d);
                 if (!is_black(le)) deposit(buffer, ctx.timeline, pixel, tof ? leg_ns : 0.0, beta * le);
             }
             if (m.type == MaterialType::Diffuse) {
                 Vec3 ns = toward ? hit.shading_normal : -hit.shading_normal;
-                store_visible_point(pixel, hit.position, hit.t, nf, ns, beta * albedo_at(sc, m, hit), leg_ns, specular, rng);
+                store_visible_point(pixel, hit.position, hit.t, nf, ns, beta * albedo_at(m, hit), leg_ns, specular, rng);
                 return;
             }
             if (++specular >= sc.render.max_depth) return;

@@ -68,7 +68,7 @@ struct PhotonPath {
             // Nothing this path reaches from here on can arrive inside this section.
             if (t >= cut) return;
             if (hit.light >= 0) return;  // lights absorb
-            const MaterialDesc& m = sc.materials[hit.material];
+            const SurfaceMaterial& m = ctx.materials[hit.material];
             const bool toward = dot(d, hit.normal) < 0;
             Vec3 nf = toward ? hit.normal : -hit.normal;
             if (m.type == MaterialType::Diffuse) {
@@ -76,7 +76,7 @@ struct PhotonPath {
                 if (depth >= 2 || e.direct_by_photons)
                     out.push_back({hit.position.x, hit.position.y, hit.position.z, flux.x, flux.y, flux.z,
                                    encode_normal(ns), static_cast<uint32_t>(depth), t});
-                const Vec3 albedo = albedo_at(sc, m, hit);
+                const Vec3 albedo = albedo_at(m, hit);
                 // Russian roulette from the third vertex on: survive with the albedo's maximum.
                 float q = depth >= 3 ? std::min(1.0f, max_component(albedo)) : 1.0f;
                 if (q <= 0 || (q < 1 && rng.uniform() >= q)) return;

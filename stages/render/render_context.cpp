@@ -19,11 +19,9 @@ Vec3 extent_max(const SceneDesc& d, const SceneGeometry& g) {
 
 RenderContext::RenderContext(const SceneDesc& desc)
     : scene(with_imports(desc)), geometry(scene), lights(scene, extent_min(scene, geometry), extent_max(scene, geometry)),
-      camera(desc.camera) {
-    timeline.start_ns = desc.time.start_ns;
-    timeline.end_ns = desc.time.end_ns;
-    timeline.frames = desc.time.frames;
-    if (desc.emission.mode == EmissionMode::Pulse) pulse_buckets = std::max(1, desc.emission.width_frames);
+      materials(scene), camera(desc.camera) {
+    timeline = timeline_of(desc);
+    pulse_buckets = timeline.pulse_buckets;
     width = desc.camera.width;
     height = desc.camera.height;
     initial_radius = desc.render.radius > 0 ? desc.render.radius : choose_initial_radius(desc, geometry, camera);

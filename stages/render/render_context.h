@@ -8,6 +8,7 @@
 #include "config/scene_desc.h"
 #include "core/camera.h"
 #include "core/light_set.h"
+#include "core/material_table.h"
 #include "core/medium.h"
 #include "core/scene_geometry.h"
 #include "core/timeline.h"
@@ -21,9 +22,10 @@ struct RenderContext {
     SceneDesc scene;
     SceneGeometry geometry;
     LightSet lights;
+    MaterialTable materials;     // what the tracers read at a hit (built from scene.materials)
     PinholeCamera camera;
-    Timeline timeline;
-    int pulse_buckets = 1;       // pulse width in buckets (1 for constant emission)
+    Timeline timeline;           // timeline_of(scene): Δ, edges, buckets, the pulse's buckets
+    int pulse_buckets = 1;       // = timeline.pulse_buckets, kept for the callers that read it here
     float initial_radius = 0;    // meters
     // The medium, only when there is something to compute (present, some extinction, a box
     // of some volume): without it every stage runs its vacuum code and allocates nothing.

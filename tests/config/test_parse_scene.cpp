@@ -60,7 +60,7 @@ TEST_F(ParseScene, FullSceneValues) {
     EXPECT_EQ(s.emission.mode, EmissionMode::Pulse);
     EXPECT_DOUBLE_EQ(s.emission.width_ns, 1);
     EXPECT_EQ(s.emission.width_frames, 2);
-    EXPECT_DOUBLE_EQ(s.time.frame_ns(), 0.5);
+    EXPECT_DOUBLE_EQ(timeline_of(s).delta(), 0.5);
     EXPECT_EQ(s.render.passes, 16);
     EXPECT_TRUE(s.render.camera_tof);
     EXPECT_EQ(s.render.seed, 7u);
@@ -99,7 +99,7 @@ TEST(ParseSceneDefaults, PulseWithoutWidthIsOneFrame) {
                                    "p.json", "");
     EXPECT_EQ(s.emission.width_ns, 0);
     EXPECT_EQ(s.emission.width_frames, 1);
-    EXPECT_DOUBLE_EQ(s.time.frame_ns(), 0.1);
+    EXPECT_DOUBLE_EQ(timeline_of(s).delta(), 0.1);
 }
 
 TEST(ParseSceneValues, IntegersWrittenAsFloatsAndLargeSeeds) {

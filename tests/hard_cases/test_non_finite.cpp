@@ -76,7 +76,7 @@ std::vector<GuardCase> cases() {
         SceneDesc s = small();
         s.emission.mode = EmissionMode::Pulse;
         s.emission.width_frames = 3;
-        s.emission.width_ns = 3 * s.time.frame_ns();
+        s.emission.width_ns = 3 * timeline_of(s).delta();
         return s;
     }, 3});
     c.push_back({"camera_tof and ambient", [] {

@@ -31,7 +31,7 @@ SceneDesc emitter_only(double start, double end, int frames, EmissionMode mode, 
     s.time = {start, end, frames, 24};
     s.emission.mode = mode;
     s.emission.width_ns = pulse_ns;
-    s.emission.width_frames = pulse_ns > 0 ? static_cast<int>(std::lround(pulse_ns / s.time.frame_ns())) : 1;
+    s.emission.width_frames = pulse_ns > 0 ? static_cast<int>(std::lround(pulse_ns / timeline_of(s).delta())) : 1;
     s.render.passes = 3;
     s.render.photons_per_pass = 100;
     return s;

@@ -46,7 +46,7 @@ struct TofCheck {
 // dot(n, x) = offset (lit by point light `light`).
 TofCheck check_tof(SceneDesc s, Vec3 n, float offset, Vec3 light, std::vector<int>* first_no = nullptr,
                    std::vector<int>* first_tof = nullptr) {
-    const double delta = s.time.frame_ns();
+    const double delta = timeline_of(s).delta();
     s.render.camera_tof = false;
     lp::Rendered no = lp::render_all(s);
     s.render.camera_tof = true;
@@ -165,7 +165,7 @@ TEST(CameraTof, FarPartOfTiltedPlaneLightsUpLater) {
     }
     ASSERT_GE(far_x, 0);
     Vec3 pf = lp::on_plane(cam, far_x + 0.5f, row + 0.5f, n, 0);
-    const double delta = s.time.frame_ns();
+    const double delta = timeline_of(s).delta();
     const double extra = (length(pf - cam.position()) - length(pn - cam.position())) / kC / delta;
     const size_t in = size_t(row) * kRes + near_x, ifar = size_t(row) * kRes + far_x;
     EXPECT_LE(std::abs(f0[ifar] - f0[in]), 1) << "without tof, equal light paths arrive together";

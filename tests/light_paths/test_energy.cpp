@@ -130,7 +130,7 @@ TEST(Energy, FirstBounceIsLinearInAlbedoAndArrivesAfterTheShortestBouncePath) {
 
     // Causality: before the shortest light -> wall -> floor path, constant frames equal the
     // direct-only frames (same seed, so the direct light is the same, sample for sample).
-    const double delta = s.time.frame_ns();
+    const double delta = timeline_of(s).delta();
     double shortest = 1e9;
     for (auto& [i, p] : px) {
         // Shortest light -> wall -> p: straight to p's mirror image in the wall plane z = -1.

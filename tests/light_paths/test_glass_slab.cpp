@@ -81,7 +81,7 @@ TEST(GlassSlab, PulseThroughSlabArrivesLaterByNMinusOneDOverC) {
     ASSERT_GT(air.pixels, 20);
     ASSERT_GT(glass.total, 0);
     ASSERT_GT(air.total, 0);
-    const double delta = s.time.frame_ns();
+    const double delta = timeline_of(s).delta();
     const double t_air = kL / kC, t_glass = (kL - kD + kN * kD) / kC;
     const int b_air = lp::bucket_of(t_air, delta), b_glass = lp::bucket_of(t_glass, delta);
     const double expected_delay = (kN - 1) * kD / kC;
@@ -138,7 +138,7 @@ TEST(GlassSlab, CameraLegThroughGlassTravelsAtCOverN) {
     s.render.passes = 8;
     s.render.photons_per_pass = 100;
     s.render.radius = 0.005f;
-    const double delta = s.time.frame_ns();
+    const double delta = timeline_of(s).delta();
     s.render.camera_tof = false;
     lp::Rendered no = lp::render_all(s);
     s.render.camera_tof = true;

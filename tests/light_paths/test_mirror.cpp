@@ -58,7 +58,7 @@ ImageCheck check_spot_image(bool tof) {
     SceneDesc s = spot_mirror_scene(2, tof);
     lp::Rendered r = lp::render_all(s);
     PinholeCamera cam(s.camera);
-    const double delta = s.time.frame_ns();
+    const double delta = timeline_of(s).delta();
     ImageCheck out;
     double sum_got = 0, sum_want = 0;
     for (int y = 0; y < r.height; ++y)
@@ -149,7 +149,7 @@ TEST(Mirror, CameraTofGoesBackThroughTheMirror) {
     s.render.max_depth = 2;     // light -> floor -> mirror -> camera
     s.render.passes = 4;
     s.render.photons_per_pass = 1000;
-    const double delta = s.time.frame_ns();
+    const double delta = timeline_of(s).delta();
     s.render.camera_tof = false;
     lp::Rendered no = lp::render_all(s);
     s.render.camera_tof = true;

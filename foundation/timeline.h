@@ -1,0 +1,63 @@
+#pragma once
+// The time axis of a render, and the only place that does arithmetic on it: the frame width Δ,
+// the frame edges, the bucket of an arrival time, how many buckets one pulse spans, and the
+// check that a pulse width is a whole number of frames. The scene parser, the renderer, the
+// outputs (EXR headers, time labels), `retime` and `--info` all ask this struct, so that no two
+// of them can disagree by a rounding.
+//
+// Bucket j covers [start + j*delta, start + (j+1)*delta); a time exactly on an edge belongs to
+// the later bucket, and t = end belongs to no frame.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <optional>
+
+namespace sl {
+
+struct Timeline {
+    double start_ns = 0, end_ns = 1;
+    int frames = 1;
+    // How many buckets one emitted pulse spans, m = pulse width / Δ (1 for constant emission
+    // and for a pulse one frame wide). A frame of a pulse render sums m buckets.
+    int pulse_buckets = 1;
+
+    // Relative tolerance when checking that a width is a whole number of frames.
+    static constexpr double kWholeTolerance = 1e-6;
+
+    // Δ, the width of one frame in ns.
+    double delta() const { return (end_ns - start_ns) / frames; }
+    // Whether the span gives a usable Δ: end after start, and Δ finite and positive.
+    bool has_valid_delta() const {
+        const double d = delta();
+        return end_ns > start_ns && std::isfinite(d) && d > 0;
+    }
+    // The frame edge: start + k * delta (k = frames gives exactly end). Frame k spans
+    // [edge(k), edge(k + 1)).
+    double edge(int64_t k) const {
+        return k == frames ? end_ns : start_ns + static_cast<double>(k) * delta();
+    }
+    // The whole-frames check: the number of frame widths in width_ns (rounded), when width_ns
+    // is a whole number >= 1 of them within kWholeTolerance relative; nothing otherwise. The
+    // count is a double: a huge width may exceed any int (the caller bounds it).
+    std::optional<double> whole_frames(double width_ns) const {
+        const double m = width_ns / delta();
+        const double whole = std::round(m);
+        if (!(whole >= 1) || std::abs(m - whole) > kWholeTolerance * m) return std::nullopt;
+        return whole;
+    }
+    // The bucket of arrival time t, negative before start, >= frames at or after end.
+    int64_t bucket(double t) const {
+        if (!(t == t)) return std::numeric_limits<int64_t>::max();  // NaN: no frame at all
+        if (t >= end_ns) return frames + static_cast<int64_t>(std::min(std::floor((t - end_ns) / delta()), 4e18));
+        double x = std::floor((t - start_ns) / delta());
+        if (x < -4e18) return std::numeric_limits<int64_t>::min() / 2;
+        int64_t j = static_cast<int64_t>(x);
+        // The division can round across an edge: settle it against the edges themselves.
+        if (edge(j) > t) --j;
+        else if (edge(j + 1) <= t) ++j;
+        return j;
+    }
+};
+
+}  // namespace sl
