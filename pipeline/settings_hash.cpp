@@ -2,9 +2,14 @@
 
 #include <cstdint>
 #include <cstdio>
-#include <sstream>
+#include <stdexcept>
+#include <string_view>
+#include <type_traits>
+
+#include <nlohmann/json.hpp>
 
 #include "config/input_file.h"
+#include "config/scene_fields.h"
 
 namespace sl {
 namespace {
@@ -19,48 +24,77 @@ struct Fnv1a {
     }
 };
 
-std::ostream& operator<<(std::ostream& o, Vec3 v) { return o << v.x << ',' << v.y << ',' << v.z; }
+// Fields that do not decide a pixel, as paths from the scene ("[]": any element of a list).
+// File paths and decoded data stand for files whose bytes are hashed instead; fps only paces
+// the video. Every other field of SceneDesc is in the fingerprint (config/scene_fields.h).
+constexpr std::string_view kNotPixels[] = {
+    "source",          "input_files",  "imports_resolved", "materials[].name", "shapes[].file",
+    "shapes[].mesh",   "textures[].file", "textures[].image", "time.fps",
+};
+
+bool decides_pixels(const std::string& path) {
+    for (std::string_view p : kNotPixels)
+        if (path == p) return false;
+    return true;
+}
+
+// The canonical form: every field (but those above) under its name, objects with sorted keys
+// (nlohmann::json keeps them so), numbers as the shortest text that reads back exactly.
+struct Canonical {
+    std::string path;  // where this value sits, e.g. "materials[].albedo"
+
+    template <class T>
+    nlohmann::json operator()(const T& v) const {
+        if constexpr (std::is_same_v<T, Vec3>) {
+            return nlohmann::json::array({v.x, v.y, v.z});
+        } else if constexpr (std::is_enum_v<T>) {
+            return static_cast<int>(v);
+        } else if constexpr (std::is_arithmetic_v<T> || std::is_same_v<T, std::string>) {
+            return v;
+        } else if constexpr (requires { v.get(); }) {
+            // Decoded data (a mesh, a texture's texels): its file's bytes are hashed instead,
+            // and its path is in kNotPixels, so this is never reached.
+            throw std::logic_error("settings fingerprint: " + path + " is not in kNotPixels");
+        } else if constexpr (requires { v.has_value(); *v; }) {  // std::optional
+            return v ? (*this)(*v) : nlohmann::json();
+        } else if constexpr (requires { v.begin(); v.size(); }) {  // std::vector
+            nlohmann::json a = nlohmann::json::array();
+            for (const auto& e : v) a.push_back(Canonical{path + "[]"}(e));
+            return a;
+        } else {  // one of the scene's structs
+            nlohmann::json o = nlohmann::json::object();
+            visit_fields(v, [&](const char* name, const auto& field) {
+                const std::string p = path.empty() ? std::string(name) : path + "." + name;
+                if (decides_pixels(p)) o[name] = Canonical{p}(field);
+            });
+            return o;
+        }
+    }
+};
 
 }  // namespace
 
+std::string canonical_settings(const SceneDesc& s, int sections, Strategy strategy) {
+    nlohmann::json j = Canonical{}(s);
+    j["sections"] = sections;
+    j["strategy"] = static_cast<int>(strategy);
+    return j.dump();
+}
+
 std::string settings_fingerprint(const SceneDesc& s, int sections, Strategy strategy) {
-    std::ostringstream t;
-    t.precision(17);
-    const CameraDesc& c = s.camera;
-    t << "camera " << c.position << ' ' << c.look_at << ' ' << c.up << ' ' << c.vfov_deg << ' ' << c.width << 'x' << c.height << '\n';
-    for (const MaterialDesc& m : s.materials)
-        t << "material " << static_cast<int>(m.type) << ' ' << m.albedo << ' ' << m.reflectance << ' ' << m.ior << '\n';
-    Fnv1a meshes;
-    for (const ShapeDesc& sh : s.shapes) {
-        t << "shape " << static_cast<int>(sh.type) << ' ' << sh.material << ' ' << sh.corner << ' ' << sh.edge1 << ' '
-          << sh.edge2 << ' ' << sh.min << ' ' << sh.max << ' ' << sh.center << ' ' << sh.radius << ' ' << sh.translate
-          << ' ' << sh.scale << ' ' << sh.rotate_deg << '\n';
-        if (sh.type == ShapeType::Mesh && !s.imports_resolved) {
-            // Never blindly: a mesh swapped for a FIFO or /dev/zero must not hang the run.
-            read_input_chunks(sh.file, kMaxMeshBytes, s.source + ": mesh '" + sh.file + "'", "mesh file",
-                              [&](const char* p, size_t n) { meshes.bytes(p, n); });
-        }
-    }
-    for (const std::string& file : s.input_files)  // the scene, imported meshes, libraries, buffers, textures
+    // The bytes of every file the scene reads: the scene, meshes (also when not yet imported),
+    // libraries, buffers, textures.
+    Fnv1a files;
+    if (!s.imports_resolved)
+        for (const ShapeDesc& sh : s.shapes)
+            if (sh.type == ShapeType::Mesh)  // never blindly: a FIFO or /dev/zero must not hang the run
+                read_input_chunks(sh.file, kMaxMeshBytes, s.source + ": mesh '" + sh.file + "'", "mesh file",
+                                  [&](const char* p, size_t n) { files.bytes(p, n); });
+    for (const std::string& file : s.input_files)
         read_input_chunks(file, uint64_t(4) << 30, s.source + ": '" + file + "'", "input file",
-                          [&](const char* p, size_t n) { meshes.bytes(p, n); });
-    for (const LightDesc& l : s.lights) {
-        t << "light " << static_cast<int>(l.type) << ' ' << l.position << ' ' << l.corner << ' ' << l.edge1 << ' ' << l.edge2
-          << ' ' << l.direction << ' ' << l.power << ' ' << l.radiance << ' ' << l.cone_deg << ' ' << l.radius;
-        if (l.type == LightType::Sun) t << " sun " << l.irradiance << ' ' << l.angle_deg;  // others: as before
-        t << '\n';
-    }
-    const MediumDesc& m = s.medium;
-    t << "medium " << m.present << ' ' << m.sigma_a << ' ' << m.sigma_s << ' ' << m.g << ' ' << m.has_bounds << ' '
-      << m.bounds_min << ' ' << m.bounds_max << '\n';
-    t << "time " << s.time.start_ns << ' ' << s.time.end_ns << ' ' << s.time.frames << '\n';
-    t << "emission " << static_cast<int>(s.emission.mode) << ' ' << s.emission.width_frames << '\n';
-    const RenderDesc& r = s.render;
-    t << "render " << r.passes << ' ' << r.photons_per_pass << ' ' << r.max_depth << ' ' << r.radius << ' ' << r.alpha
-      << ' ' << r.camera_tof << ' ' << r.seed << ' ' << r.ambient << '\n';
-    t << "sections " << sections << " strategy " << static_cast<int>(strategy) << " meshes " << meshes.h << '\n';
+                          [&](const char* p, size_t n) { files.bytes(p, n); });
+    const std::string text = canonical_settings(s, sections, strategy) + " files " + std::to_string(files.h);
     Fnv1a h;
-    std::string text = t.str();
     h.bytes(text.data(), text.size());
     char hex[17];
     std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h.h));
