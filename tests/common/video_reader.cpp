@@ -1,4 +1,4 @@
-#include "stages/output/video_reader.h"
+#include "tests/common/video_reader.h"
 
 extern "C" {
 #include <libavcodec/avcodec.h>

@@ -1,5 +1,6 @@
 #pragma once
-// A real decoder, for checking what the encoder wrote (tests of this stage and the pipeline's).
+// A real decoder, for checking what the encoder wrote (tests of the output stage and the
+// pipeline). Test-only: built into sl_test_support, which the program does not link.
 #include <cstdint>
 #include <string>
 #include <vector>

@@ -14,7 +14,7 @@ extern "C" {
 
 #include "foundation/errors.h"
 #include "stages/output/video_encoder.h"
-#include "stages/output/video_reader.h"
+#include "tests/common/video_reader.h"
 #include "tests/common/temp_dir.h"
 
 namespace {

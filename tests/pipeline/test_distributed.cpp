@@ -10,7 +10,7 @@
 #include <future>
 #include <thread>
 
-#include "stages/output/video_reader.h"
+#include "tests/common/video_reader.h"
 #include "tests/pipeline/mpi_launcher.h"
 #include "tests/pipeline/pipeline_helpers.h"
 

@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "stages/output/video_reader.h"
+#include "tests/common/video_reader.h"
 #include "tests/pipeline/pipeline_helpers.h"
 
 namespace fs = std::filesystem;

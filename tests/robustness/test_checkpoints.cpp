@@ -7,7 +7,7 @@
 #include <random>
 
 #include "checkpoint_helpers.h"
-#include "stages/output/video_reader.h"
+#include "tests/common/video_reader.h"
 #include "stages/render/section_state_io.h"
 
 namespace sl {

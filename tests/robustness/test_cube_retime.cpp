@@ -8,7 +8,7 @@
 #include "process.h"
 #include "stages/output/exr_io.h"
 #include "stages/output/npy_cube.h"
-#include "stages/output/video_reader.h"
+#include "tests/common/video_reader.h"
 
 namespace sl {
 namespace {

@@ -13,7 +13,7 @@
 #include "checkpoint_helpers.h"
 #include "process.h"
 #include "stages/output/exr_io.h"
-#include "stages/output/video_reader.h"
+#include "tests/common/video_reader.h"
 
 namespace sl {
 namespace {
