@@ -24,12 +24,13 @@ struct Fnv1a {
     }
 };
 
-// Fields that do not decide a pixel, as paths from the scene ("[]": any element of a list).
-// File paths and decoded data stand for files whose bytes are hashed instead; fps only paces
-// the video. Every other field of SceneDesc is in the fingerprint (config/scene_fields.h).
+// Fields that do not decide a pixel, as paths from the scene ("[]": any element of a list):
+// names; file paths and decoded data, whose files' bytes are hashed instead; whether imports
+// were read yet (bookkeeping); fps, which only paces the video. Every other field of SceneDesc
+// is in the fingerprint (config/scene_fields.h names them all).
 constexpr std::string_view kNotPixels[] = {
-    "source",          "input_files",  "imports_resolved", "materials[].name", "shapes[].file",
-    "shapes[].mesh",   "textures[].file", "textures[].image", "time.fps",
+    "source",        "input_files",   "imports_resolved", "materials[].name", "shapes[].file",
+    "shapes[].mesh", "textures[].file", "textures[].image", "time.fps",
 };
 
 bool decides_pixels(const std::string& path) {
