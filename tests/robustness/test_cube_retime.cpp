@@ -80,6 +80,9 @@ TEST(Cube, RetimeRefusesAPulseThatIsNotWholeBuckets) {
     test::RunResult r = test::run({"retime", dir + "/c.npy", "--emission", "pulse:3", "-o", dir + "/x.mp4"}, dir);
     EXPECT_EQ(r.status, 2);
     ASSERT_EQ(test::error_lines(r.err).size(), 1u) << r.err;
+    // The same whole-frames check, and words, as a scene's pulse width (the Timeline's).
+    EXPECT_NE(r.err.find("--emission: pulse width 3 ns is not a whole multiple of the frame width"), std::string::npos)
+        << r.err;
     EXPECT_FALSE(fs::exists(dir + "/x.mp4"));
     fs::remove_all(dir);
 }
