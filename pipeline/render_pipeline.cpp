@@ -65,6 +65,24 @@ FrameOutputs::Metadata frame_metadata(const Section& s) {
     return m;
 }
 
+// "slowlight: section 2/4, frames 12-23: 96 MiB of time buckets; from its checkpoint at pass 8"
+std::string section_line(const RenderContext& ctx, const SectionLayout& layout, int sections, const SectionStart& start) {
+    const RankExchange* ex = ctx.exchange;
+    char line[256];
+    std::snprintf(line, sizeof line, "slowlight: section %d/%d, frames %d-%d: %s of time buckets%s%s", layout.index + 1,
+                  sections, layout.first_frame, layout.end_frame - 1,
+                  format_bytes(SectionBuffer::bytes_needed(ex ? PixelShare{0, ex->ranks(), ctx.pixels()}.count()
+                                                              : ctx.pixels(),
+                                                           layout.slots(), ctx.has_ambient()))
+                      .c_str(),
+                  ex ? " per rank" : "",
+                  start.from_checkpoint ? (start.finished ? "; finished, from its checkpoint"
+                                                          : ("; from its checkpoint at pass " +
+                                                             std::to_string(start.passes_done)).c_str())
+                                        : "");
+    return line;
+}
+
 }  // namespace
 
 PipelineStats run_pipeline(const PipelineJob& job, FrameSink& outputs, const ProgressFn& progress,
@@ -165,19 +183,7 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameSink& outputs, const Pro
                         : std::make_unique<SectionBuffer>(ctx.pixels(), s->layout, ctx.initial_radius, ctx.has_ambient());
         }
         SectionBuffer* live = buffer.get();
-        char line[256];
-        std::snprintf(line, sizeof line, "slowlight: section %d/%d, frames %d-%d: %s of time buckets%s%s", index + 1,
-                      plan.sections, s->layout.first_frame, s->layout.end_frame - 1,
-                      format_bytes(SectionBuffer::bytes_needed(ex ? PixelShare{0, ex->ranks(), ctx.pixels()}.count()
-                                                                  : ctx.pixels(),
-                                                               s->layout.slots(), ctx.has_ambient()))
-                          .c_str(),
-                      ex ? " per rank" : "",
-                      start.from_checkpoint ? (start.finished ? "; finished, from its checkpoint"
-                                                              : ("; from its checkpoint at pass " +
-                                                                 std::to_string(start.passes_done)).c_str())
-                                            : "");
-        log(line);
+        log(section_line(ctx, s->layout, plan.sections, start));
         bool by_interrupt = false;
         if (start.finished) {
             s->run.buffer = std::move(buffer);
@@ -256,7 +262,9 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameSink& outputs, const Pro
                     std::vector<float> steady;
                     s.assembler->steady(steady);
                     whole_image(steady);
-                    const std::vector<uint8_t> lamps = emitter_pixels(ctx);
+                    // (a camera ray per pixel: only when the exposure or the black check needs it)
+                    const std::vector<uint8_t> lamps =
+                        exposure_pending || job.check_black ? emitter_pixels(ctx) : std::vector<uint8_t>();
                     // Decided here, handed to the outputs only by the write stage; nothing else
                     // sets it meanwhile: with several sections the preview fixed it before.
                     if (exposure_pending) {  // one section: it holds every frame
@@ -265,12 +273,12 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameSink& outputs, const Pro
                         if (root) img.exposure = meter.decide();
                         exposure_pending = false;
                     }
-                    if (root) {
+                    if (root && job.check_black) {
                         ExposureMeter light(EmissionMode::Constant, {}, lamps);
                         light.add_steady(steady.data(), ctx.pixels());
                         stats.steady_black = light.decide().black;
-                        img.steady = std::move(steady);
                     }
+                    if (root) img.steady = std::move(steady);
                 }
             }
             s.assembler->frame(job_in.frame, img.rgb);

@@ -63,6 +63,7 @@ struct PipelineJob {
     const FrameOutputs* exr_files = nullptr;  // where on_disk's frames are read back (and --exr-dir)
     ExposureRule exposure_rule;
     std::string fingerprint;    // of this render's settings: resumed frames must carry it
+    bool check_black = true;    // find PipelineStats::steady_black (the program warns of it)
     std::vector<SectionStart> starts;  // per section: a checkpoint to continue from (--resume)
     Checkpointer* checkpointer = nullptr;  // saves the section in progress; null: never
     TimeBudget* budget = nullptr;          // --time-limit; null: none
