@@ -20,9 +20,9 @@
 #include "config/parse_scene.h"
 #include "core/rng.h"
 #include "core/sampling.h"
-#include "stages/render/frame_assembly.h"
+#include "pipeline/frames_in_memory.h"
+#include "pipeline/render_frames.h"
 #include "stages/render/render_context.h"
-#include "stages/render/section_renderer.h"
 #include "bench/common/random_rays.h"
 
 namespace {
@@ -48,25 +48,20 @@ void BM_Render(benchmark::State& state) {
     sl::RenderContext ctx(scene);
     for (auto _ : state) {
         auto t0 = Clock::now();
-        sl::SectionCounters counters;
-        sl::SectionLayout layout = sl::make_section(ctx.timeline, ctx.scene.emission.mode, 1, 1, 0);
-        sl::SectionRun run = sl::render_section(ctx, layout, scene.render.passes, scene.render.photons_per_pass, counters);
-        auto ta = Clock::now();
-        sl::FrameAssembler assembler(*run.buffer, sl::EmissionMode::Constant, 1);
-        std::vector<float> rgb;
-        for (int f = 0; f < frames; ++f) assembler.frame(f, rgb);
-        state.counters["assemble_s"] = std::chrono::duration<double>(Clock::now() - ta).count();
-        run.buffer.reset();
+        sl::FramesInMemory sink;
+        sink.keep_frames = false;  // assembled and timed, not kept
+        const sl::PipelineStats stats = sl::render_frames(ctx, {}, sink);
+        state.counters["assemble_s"] = stats.assembly;
         double secs = std::chrono::duration<double>(Clock::now() - t0).count();
         state.SetIterationTime(secs);
         auto& best = g_best_seconds[frames];
         best = best == 0 ? secs : std::min(best, secs);
-        state.counters["photon_pass_s"] = run.times.photons;
-        state.counters["camera_pass_s"] = run.times.camera;
-        state.counters["scatter_s"] = run.times.gather;
+        state.counters["photon_pass_s"] = stats.render.photons;
+        state.counters["camera_pass_s"] = stats.render.camera;
+        state.counters["scatter_s"] = stats.render.gather;
         // Camera and shadow rays over the camera pass's tracing time (its gathers excluded).
-        if (run.times.camera > 0)
-            g_camera_rays_per_s = std::max(g_camera_rays_per_s, counters.camera.rays.load() / run.times.camera);
+        if (stats.render.camera > 0)
+            g_camera_rays_per_s = std::max(g_camera_rays_per_s, stats.counts.camera_rays / stats.render.camera);
     }
 }
 

@@ -20,7 +20,8 @@
 
 #include "config/parse_scene.h"
 #include "stages/render/render_context.h"
-#include "stages/render/section_renderer.h"
+#include "pipeline/frames_in_memory.h"
+#include "pipeline/render_frames.h"
 
 namespace {
 
@@ -51,27 +52,30 @@ void BM_Pass(benchmark::State& state) {
     sl::SceneDesc s = scene(frames, medium);
     sl::RenderContext ctx(s);
     for (auto _ : state) {
-        sl::SectionCounters counters;
-        sl::SectionLayout layout = sl::make_section(ctx.timeline, ctx.scene.emission.mode, 1, 1, 0);
+        sl::FramesInMemory sink;
+        sink.keep_frames = false;
         auto t0 = Clock::now();
         std::clock_t c0 = std::clock();
-        sl::SectionRun run = sl::render_section(ctx, layout, s.render.passes, s.render.photons_per_pass, counters);
-        double cpu = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
-        double secs = std::chrono::duration<double>(Clock::now() - t0).count();
+        double cpu = 0, secs = 0;
+        sink.on_section_rendered = [&](int, const sl::SectionBuffer&) {  // the passes alone, not the frames
+            cpu = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
+            secs = std::chrono::duration<double>(Clock::now() - t0).count();
+        };
+        const sl::PipelineStats run = sl::render_frames(ctx, {}, sink);
         state.SetIterationTime(secs);
         const double n = s.render.passes;
         Best b;
         b.pass_s = secs / n;
-        b.camera_s = run.times.camera / n;
-        b.photons_s = run.times.photons / n;
-        b.gather_s = run.times.gather / n;
-        b.beam_s = run.times.volume / n;
-        double segs = static_cast<double>(counters.camera.beam_segments.load());
+        b.camera_s = run.render.camera / n;
+        b.photons_s = run.render.photons / n;
+        b.gather_s = run.render.gather / n;
+        b.beam_s = run.render.volume / n;
+        double segs = static_cast<double>(run.counts.beam_segments);
         b.segments_per_pass = segs / n;
-        b.beam_ns_per_segment = segs > 0 ? run.times.volume * 1e9 / segs : 0;
+        b.beam_ns_per_segment = segs > 0 ? run.render.volume * 1e9 / segs : 0;
         b.pass_cpu_s = cpu / n;
-        b.beam_cpu_ns_per_segment = segs > 0 ? run.times.volume_cpu * 1e9 / segs : 0;
-        b.hits_per_segment = segs > 0 ? counters.camera.beam_hits.load() / segs : 0;
+        b.beam_cpu_ns_per_segment = segs > 0 ? run.render.volume_cpu * 1e9 / segs : 0;
+        b.hits_per_segment = segs > 0 ? run.counts.beam_hits / segs : 0;
         // The best of each number on its own, over the rounds.
         Best& best = g_best[{frames, medium}];
         auto keep = [](double& kept, double v) { kept = kept == 0 ? v : std::min(kept, v); };

@@ -7,7 +7,10 @@
 
 namespace sl {
 
+// Single: one convergence gives every frame (in K sections when memory asks for them);
+// FrameByFrame: every frame its own full convergence (the paper's baseline).
 enum class Strategy { Single, FrameByFrame };
+inline const char* strategy_name(Strategy s) { return s == Strategy::Single ? "single" : "frame-by-frame"; }
 
 // The curve from exposed linear radiance to display values (before the sRGB encoding).
 enum class ToneCurve { Linear, Filmic, Log };

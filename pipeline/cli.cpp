@@ -27,7 +27,9 @@
 #include "pipeline/memory_plan.h"
 #include "pipeline/output_checks.h"
 #include "pipeline/progress.h"
+#include "pipeline/render_messages.h"
 #include "pipeline/render_pipeline.h"
+#include "pipeline/render_setup.h"
 #include "pipeline/preview_sheet.h"
 #include "pipeline/resume.h"
 #include "pipeline/resume_checkpoints.h"
@@ -92,22 +94,6 @@ extern "C" void on_launcher_signal(int sig) {
     _exit(128 + sig);
 }
 
-// "frames 0-23 (sections 1-2, section 2 from 12 of 64 passes) to out.mp4 and exr/"
-std::string what_was_written(const PipelineStats& stats, const FrameOutputs& outputs, const RunOptions& o, int passes) {
-    if (outputs.frames_written == 0) return "nothing written";
-    std::string where;
-    auto add = [&](const std::string& w) { where += (where.empty() ? "" : ", ") + w; };
-    if (!o.output.empty()) add(o.output == "-" ? std::string("stdout") : o.output);
-    if (!o.exr_dir.empty()) add(o.exr_dir + "/");
-    if (!o.png_dir.empty()) add(o.png_dir + "/");
-    std::string text = "wrote frames 0-" + std::to_string(outputs.frames_written - 1);
-    if (stats.interrupted_section >= 0)
-        text += " (section " + std::to_string(stats.interrupted_section + 1) + " from " +
-                std::to_string(stats.passes_per_section[stats.interrupted_section]) + " of " + std::to_string(passes) +
-                " passes)";
-    return text + (where.empty() ? " (to no output: none was asked for)" : " to " + where);
-}
-
 // Refuse up front what could only end in running out of memory.
 void check_fits_machine(const MemoryPlan& plan) {
     long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
@@ -118,15 +104,6 @@ void check_fits_machine(const MemoryPlan& plan) {
         throw InputError("the render needs about " + format_bytes(need) + " (" + format_bytes(plan.buffers_in_flight()) +
                          " of time buckets with " + std::to_string(plan.sections) + " section(s)), more than this machine's " +
                          format_bytes(ram) + "; use --sections, --max-memory, fewer frames or a smaller image");
-}
-
-// The last line of a run: what was written, how many frames, how long it took.
-void print_final_line(const FrameOutputs& outputs, const std::string& stats_path,
-                      std::chrono::steady_clock::time_point t0) {
-    std::string what = outputs.summary();
-    if (!stats_path.empty()) what += (what.empty() ? "" : ", ") + stats_path + " (statistics)";
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    std::fprintf(stderr, "slowlight: wrote %s in %.1f s\n", what.c_str(), seconds);
 }
 
 // `slowlight info cube.npy`: a cube is not a scene; say what to do with it.
@@ -162,22 +139,7 @@ int render(RunOptions o, const std::vector<std::string>& argv) {
     std::signal(SIGTERM, on_signal);
     RankExchange* ex = g_ranks.ex;
     const bool root = g_ranks.root();
-    if (ex) {
-        if (o.ranks > 0 && o.ranks != ex->ranks())
-            throw InputError("command line: --ranks " + std::to_string(o.ranks) + ": this render runs on " +
-                             std::to_string(ex->ranks()) + " MPI ranks");
-        // Resuming needs the checkpoint of every rank's pixels: not yet.
-        if (o.resume) throw InputError("command line: --resume is not supported yet when several MPI ranks render");
-        // Each needs every rank's pixels or an agreed pass count: not yet either.
-        if (!o.checkpoint_dir.empty() || o.time_limit || !o.preview_path.empty())
-            throw InputError("command line: --checkpoint, --time-limit and --preview are not supported yet when several "
-                             "MPI ranks render");
-        o.ranks = ex->ranks();
-    } else if (o.ranks > 1) {
-        throw InputError("command line: --ranks " + std::to_string(o.ranks) +
-                         ": a render on several ranks is started by an MPI launcher (mpirun -np N slowlight render ...); "
-                         "--ranks is for info");
-    }
+    check_rank_options(o, ex);
     SceneDesc scene = load_scene(o);
     MemoryPlan plan = plan_memory(scene, o);
     // Rendering one section while rank 0 writes another uses both channels at once.
@@ -198,20 +160,8 @@ int render(RunOptions o, const std::vector<std::string>& argv) {
     // Checkpoints: in --checkpoint DIR, or else in --exr-dir, where --resume looks anyway. Not
     // with several ranks yet (a rank holds a share of the pixels; docs/distributed.md).
     const std::string again = resume_command(argv);
-    CheckpointSettings checkpoints;
-    if (!ex) {
-        checkpoints.dir = !o.checkpoint_dir.empty() ? o.checkpoint_dir : o.exr_dir;
-        checkpoints.flag = !o.checkpoint_dir.empty() ? "--checkpoint" : "--exr-dir";
-    }
-    checkpoints.every = o.checkpoint_every.value_or(kDefaultCheckpointEvery);
-    checkpoints.keep_finished = o.exr_dir.empty() && plan.sections > 1;
-    SectionStateId state_id;
-    state_id.program_version = SLOWLIGHT_VERSION;
-    state_id.fingerprint = fingerprint;
-    state_id.sections = plan.sections;
-    state_id.passes_target = scene.render.passes;
-    state_id.width = ctx.width;
-    state_id.height = ctx.height;
+    const CheckpointSettings checkpoints = checkpoint_settings(o, plan, ex != nullptr);
+    const SectionStateId state_id = section_state_id(scene, ctx, plan, fingerprint);
     const std::vector<SectionLayout> layouts = plan_sections(ctx, plan, o.strategy);
     std::vector<SectionStart> starts;
     if (o.resume)
@@ -219,30 +169,8 @@ int render(RunOptions o, const std::vector<std::string>& argv) {
     else if (!ex)
         refuse_existing_checkpoints(checkpoints.dir, again);
 
-    OutputSettings out;
-    out.video = o.output;
-    out.exr_dir = o.exr_dir;
-    out.png_dir = o.png_dir;
-    out.cube = o.cube_path;
-    out.width = scene.camera.width;
-    out.height = scene.camera.height;
-    out.fps = scene.time.fps;
-    out.timeline = ctx.timeline;
-    out.exposure = o.exposure;
-    out.tone = o.tone;
-    out.label_time = o.label_time;
-    if (!o.cube_path.empty()) out.emitter_runs = mask_runs(emitter_pixels(ctx));
-    out.metadata = {{"slowlight:version", SLOWLIGHT_VERSION}, {"slowlight:scene", scene.source},
-                    {kFingerprintKey, fingerprint}};
-    if (!o.preview_path.empty()) {  // checked now: a preview that cannot be written must not stop a render
-        std::filesystem::path dir = std::filesystem::path(o.preview_path).parent_path();
-        std::error_code ec;
-        if (std::filesystem::is_directory(o.preview_path, ec) || !std::filesystem::is_directory(dir.empty() ? "." : dir, ec))
-            throw RuntimeFailure("--preview " + o.preview_path + ": cannot write there (" +
-                                 (std::filesystem::is_directory(o.preview_path, ec) ? std::string("a directory")
-                                                                                     : "no directory " + dir.string()) +
-                                 ")");
-    }
+    const OutputSettings out = output_settings(o, scene, ctx, fingerprint);
+    check_preview_path(o.preview_path);  // a preview that cannot be written must not stop a render
     g_setting_up = false;  // from here on a signal means: deliver what you have
     Checkpointer checkpointer(checkpoints, state_id);  // makes the directory: checked before any output
     // Only rank 0 writes; the others assemble their pixels and send them to it.
@@ -255,6 +183,7 @@ int render(RunOptions o, const std::vector<std::string>& argv) {
     job.exposure_rule.percentile = o.exposure_percentile;
     job.exposure_rule.follow = o.exposure_follow;
     job.fingerprint = fingerprint;
+    job.exr_files = &outputs;
     if (o.resume && !o.exr_dir.empty()) {
         job.on_disk = sections_on_disk(outputs, layouts, fingerprint, ctx.width, ctx.height);
         drop_interrupted_sections(outputs, layouts, job.on_disk);
@@ -276,14 +205,7 @@ int render(RunOptions o, const std::vector<std::string>& argv) {
         g_ranks.started = true;
         std::signal(SIGTERM, on_launcher_signal);
     }
-    if (root)
-        std::fprintf(stderr, "slowlight: %dx%d, %d frames, %d passes x %lld photons, %d section%s%s; buckets %s per section%s, about %s fixed\n",
-                     ctx.width, ctx.height, scene.time.frames, scene.render.passes,
-                     static_cast<long long>(scene.render.photons_per_pass), plan.sections, plan.sections > 1 ? "s" : "",
-                     plan.overlap ? " (two alive: encode while rendering)" : "",
-                     format_bytes(plan.buffer_bytes_per_section).c_str(),
-                     ex ? (" per rank on " + std::to_string(ex->ranks()) + " MPI ranks").c_str() : "",
-                     format_bytes(plan.fixed_overhead_bytes).c_str());
+    if (root) print_render_start(ctx, scene, plan, ex);
     double setup = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
     ProgressBar bar(o.progress && root, plan.sections, scene.render.passes, scene.render.alpha);
@@ -298,26 +220,7 @@ int render(RunOptions o, const std::vector<std::string>& argv) {
     job.passes_fixed = [&](int n) { bar.set_passes(n); };
     PipelineStats stats = run_pipeline(job, outputs, [&](int s, int p) { bar.update(s, p); }, g_cancel);
     bar.finish();
-    if (ex && root)
-        std::fprintf(stderr, "slowlight: %d MPI ranks; rank 0 received %s with the passes (%s per pass per rank) and %s of frames\n",
-                     ex->ranks(), format_bytes(stats.exchanged_received[0]).c_str(),
-                     format_bytes(stats.exchanged_received[0] / static_cast<uint64_t>(std::max(1, stats.passes_run))).c_str(),
-                     format_bytes(stats.exchanged_received[1]).c_str());
-    if (root && stats.sections_resumed > 0)
-        std::fprintf(stderr, "slowlight: resumed %d of %d sections from %s\n", stats.sections_resumed, plan.sections,
-                     (o.exr_dir.empty() ? checkpoints.dir : o.exr_dir).c_str());
-    if (root && budget.limited() && !stats.interrupted) {
-        int reached = budget.passes().value_or(scene.render.passes);
-        int fewest = reached;  // a later section is cut short only when the run went well past the budget
-        for (int n : stats.passes_per_section)
-            if (n > 0) fewest = std::min(fewest, n);
-        std::fprintf(stderr, "slowlight: time limit %s: %d pass%s per section (--passes %d)%s\n",
-                     format_duration(*o.time_limit).c_str(), reached, reached == 1 ? "" : "es", scene.render.passes,
-                     fewest < reached ? ("; a later section was cut at " + std::to_string(fewest) +
-                                         " passes: the run had gone a quarter past the budget")
-                                            .c_str()
-                                      : "");
-    }
+    if (root) print_after_render(stats, scene, plan, o, budget, o.exr_dir.empty() ? checkpoints.dir : o.exr_dir, ex);
     auto tf = std::chrono::steady_clock::now();
     outputs.finish();
     double output_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - tf).count();
@@ -345,19 +248,7 @@ int render(RunOptions o, const std::vector<std::string>& argv) {
     }
     if (stats.interrupted) {
         if (!root) return 130;
-        std::string where = stats.interrupted_section >= 0
-                                ? "in section " + std::to_string(stats.interrupted_section + 1) + "/" + std::to_string(plan.sections)
-                                : std::string("before a section's first pass");
-        std::fprintf(stderr, "slowlight: interrupted %s; %s\n", where.c_str(),
-                     what_was_written(stats, outputs, o, scene.render.passes).c_str());
-        if (checkpointer.enabled())
-            std::fprintf(stderr, "slowlight: %s; to continue: %s\n",
-                         stats.interrupted_checkpoint.empty() ? ("finished frames are in " + o.exr_dir).c_str()
-                                                              : ("state saved in " + stats.interrupted_checkpoint).c_str(),
-                         again.c_str());
-        else
-            std::fprintf(stderr, "slowlight: nothing saved to resume from (give --checkpoint DIR or --exr-dir to make a "
-                                 "render resumable)\n");
+        print_interrupted(stats, plan, outputs, o, scene.render.passes, checkpointer.enabled(), again);
         return 130;
     }
     checkpointer.remove_all();  // a finished render needs none of them

@@ -13,6 +13,7 @@
 #include "config/run_options.h"
 #include "foundation/timeline.h"
 #include "pipeline/exposure.h"
+#include "pipeline/frame_sink.h"
 #include "stages/output/exr_header_scan.h"
 #include "stages/output/npy_cube.h"
 #include "stages/output/time_label.h"
@@ -34,26 +35,25 @@ struct OutputSettings {
     std::vector<std::pair<int64_t, int64_t>> emitter_runs;  // the cube's side-car: pixels that see a lamp
 };
 
-class FrameOutputs {
+class FrameOutputs : public FrameSink {
 public:
     explicit FrameOutputs(const OutputSettings& settings);  // opens the encoder, makes dirs
 
-    bool needs_exposure() const { return !exposure_ && (encoder_ || !settings_.png_dir.empty()); }
+    bool needs_exposure() const override { return !exposure_ && (encoder_ || !settings_.png_dir.empty()); }
     void set_exposure(double e) { exposure_ = e; }
-    void set_exposure_plan(const ExposurePlan& plan) {
+    void set_exposure_plan(const ExposurePlan& plan) override {
         exposure_ = plan.base;
         per_frame_exposure_ = plan.per_frame;
     }
-    std::optional<double> exposure() const { return exposure_; }
+    std::optional<double> exposure() const override { return exposure_; }
     double frame_exposure(int index) const;
-    bool wants_cube() const { return cube_ != nullptr; }
+    bool wants_cube() const override { return cube_ != nullptr; }
 
     // `on_disk`: the EXR is already there (a resumed section), so only the rest is written.
     // `extra`: more EXR header entries for this frame (e.g. the passes it got).
-    using Metadata = std::map<std::string, std::string>;
-    void write_frame(int index, const std::vector<float>& rgb, bool on_disk = false, const Metadata& extra = {});
-    void write_steady(const std::vector<float>& rgb, const Metadata& extra = {});
-    void write_cube_plane(const std::vector<float>& rgb);
+    void write_frame(int index, const std::vector<float>& rgb, bool on_disk = false, const Metadata& extra = {}) override;
+    void write_steady(const std::vector<float>& rgb, const Metadata& extra = {}) override;
+    void write_cube_plane(const std::vector<float>& rgb) override;
     void finish();  // closes the video so that it plays, and the cube
 
     std::string exr_frame_path(int index) const;

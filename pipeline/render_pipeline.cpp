@@ -13,6 +13,7 @@
 
 #include "pipeline/distributed/image_gather.h"
 #include "pipeline/exposure.h"
+#include "pipeline/exposure_preview.h"
 #include "pipeline/resume.h"
 #include "stages/output/exr_frame_check.h"
 #include "stages/output/exr_io.h"
@@ -56,86 +57,6 @@ struct FrameImage {
 // Frames travel by pointer: a flow-graph edge copies its message, and a frame is megabytes.
 using FramePtr = std::shared_ptr<FrameImage>;
 
-// Turns this rank's pixels of an image into the whole image on rank 0 (and an empty one on the
-// other ranks); in one process the image already is whole.
-void whole_image_of(const RenderContext& ctx, std::vector<float>& rgb) {
-    if (ctx.exchange) gather_image(*ctx.exchange, ctx.pixels(), rgb);
-}
-
-// Feeds the meter every image it needs from a buffer that holds every frame (one section, or
-// the preview): the steady image, and the frames themselves for pulses and --exposure-follow.
-// With ranks every rank takes part (the images come together on rank 0, whose meter decides).
-void measure_buffer(const SectionBuffer& buffer, const RenderContext& ctx, ExposureMeter& meter,
-                    const std::vector<float>* steady = nullptr) {
-    std::vector<float> rgb;
-    if (steady) {
-        if (!steady->empty()) meter.add_steady(steady->data(), ctx.pixels());
-    } else if (buffer.layout.has_after) {  // the full-path section: its slots sum to the steady image
-        FrameAssembler(buffer, EmissionMode::Pulse, 1).steady(rgb);  // (no running sum needed for it)
-        whole_image_of(ctx, rgb);
-        if (!rgb.empty()) meter.add_steady(rgb.data(), ctx.pixels());
-    }
-    if (!meter.wants_frames()) return;
-    FrameAssembler a(buffer, ctx.scene.emission.mode, ctx.pulse_buckets);
-    for (int f = buffer.layout.first_frame; f < buffer.layout.end_frame; ++f) {
-        a.frame(f, rgb);
-        whole_image_of(ctx, rgb);
-        if (!rgb.empty()) meter.add_frame(f, rgb.data(), ctx.pixels());
-    }
-}
-
-// A short convergence made only to choose the exposure before the first section's frames are
-// encoded (with one section, the section itself provides it): the steady image at full
-// resolution when that is all the rule needs; every frame at a quarter of the resolution (a
-// sixteenth of the memory) for pulses and --exposure-follow. The statistic is a mean over
-// pixels, so neither the resolution nor the preview's fewer passes move it.
-// The preview's passes: an eighth of the render's, at least 4 (or all, if fewer).
-int preview_passes(int passes) { return std::min(passes, std::max(4, passes / 8)); }
-
-// `stop(passes done)` ends it early (an interrupt, or --time-limit's share spent).
-ExposurePlan exposure_from_preview(const RenderContext& ctx, const ExposureRule& rule, SectionCounters& counters,
-                                   const std::function<bool(int)>& stop, int& passes_done) {
-    const int passes = preview_passes(ctx.scene.render.passes);
-    int done = 0;
-    auto on_pass = [&](int p) { done = passes_done = p; };
-    auto cancelled = [&] { return stop(done); };
-    const int64_t photons = ctx.scene.render.photons_per_pass;
-    const EmissionMode mode = ctx.scene.emission.mode;
-    if (mode == EmissionMode::Pulse || rule.follow) {
-        SceneDesc small = ctx.scene;
-        // At least 64 pixels a side (or the image's own): a mean over fewer is too noisy.
-        small.camera.width = std::max(std::min(64, ctx.width), ctx.width / 4);
-        small.camera.height = std::max(std::min(64, ctx.height), ctx.height / 4);
-        small.render.radius = ctx.initial_radius;
-        RenderContext preview(small);
-        preview.exchange = ctx.exchange;
-        SectionLayout l = make_section(preview.timeline, mode, preview.pulse_buckets, 1, 0);
-        SectionRun run = render_section(preview, l, passes, photons, counters, on_pass, cancelled);
-        ExposureMeter meter(mode, rule, emitter_pixels(preview));
-        measure_buffer(*run.buffer, preview, meter);
-        return meter.decide();
-    }
-    SectionLayout l;
-    l.first_frame = l.end_frame = ctx.timeline.frames;
-    l.first_bucket = l.end_frame;
-    l.full_paths = true;
-    SectionRun run = render_section(ctx, l, passes, photons, counters, on_pass, cancelled);
-    ExposureMeter meter(mode, rule, emitter_pixels(ctx));
-    measure_buffer(*run.buffer, ctx, meter);
-    return meter.decide();
-}
-
-// A resumed render of one section: the same images, read back from its EXR files.
-ExposurePlan exposure_from_disk(const RenderContext& ctx, const ExposureRule& rule, const FrameOutputs& outputs) {
-    ExposureMeter meter(ctx.scene.emission.mode, rule, emitter_pixels(ctx));
-    ExrImage steady = read_exr(outputs.exr_steady_path(), outputs.frame_size());
-    meter.add_steady(steady.rgb.data(), ctx.pixels());
-    if (meter.wants_frames())
-        for (int f = 0; f < ctx.timeline.frames; ++f)
-            meter.add_frame(f, read_exr(outputs.exr_frame_path(f), outputs.frame_size()).rgb.data(), ctx.pixels());
-    return meter.decide();
-}
-
 // What an EXR of this section says about itself: the passes it got, and whether an interrupt
 // cut the section short (then --resume renders it further instead of keeping it).
 FrameOutputs::Metadata frame_metadata(const Section& s) {
@@ -144,26 +65,33 @@ FrameOutputs::Metadata frame_metadata(const Section& s) {
     return m;
 }
 
-}  // namespace
-
-std::vector<SectionLayout> plan_sections(const RenderContext& ctx, const MemoryPlan& plan, Strategy strategy) {
-    std::vector<SectionLayout> out;
-    for (SectionLayout l : make_sections(ctx.timeline, ctx.scene.emission.mode, ctx.pulse_buckets, plan.sections)) {
-        // The baseline renders every frame as a full, independent convergence, as the paper does.
-        if (strategy == Strategy::FrameByFrame) l.full_paths = true;
-        out.push_back(l);
-    }
-    return out;
+// "slowlight: section 2/4, frames 12-23: 96 MiB of time buckets; from its checkpoint at pass 8"
+std::string section_line(const RenderContext& ctx, const SectionLayout& layout, int sections, const SectionStart& start) {
+    const RankExchange* ex = ctx.exchange;
+    char line[256];
+    std::snprintf(line, sizeof line, "slowlight: section %d/%d, frames %d-%d: %s of time buckets%s%s", layout.index + 1,
+                  sections, layout.first_frame, layout.end_frame - 1,
+                  format_bytes(SectionBuffer::bytes_needed(ex ? PixelShare{0, ex->ranks(), ctx.pixels()}.count()
+                                                              : ctx.pixels(),
+                                                           layout.slots(), ctx.has_ambient()))
+                      .c_str(),
+                  ex ? " per rank" : "",
+                  start.from_checkpoint ? (start.finished ? "; finished, from its checkpoint"
+                                                          : ("; from its checkpoint at pass " +
+                                                             std::to_string(start.passes_done)).c_str())
+                                        : "");
+    return line;
 }
 
-PipelineStats run_pipeline(const PipelineJob& job, FrameOutputs& outputs, const ProgressFn& progress,
+}  // namespace
+
+PipelineStats run_pipeline(const PipelineJob& job, FrameSink& outputs, const ProgressFn& progress,
                            const std::atomic<bool>& cancel) {
     const RenderContext& ctx = *job.ctx;
     const MemoryPlan& plan = job.plan;
     PipelineStats stats;
-    SectionCounters counters;
-    const int passes = ctx.scene.render.passes;
-    const int64_t photons_per_pass = ctx.scene.render.photons_per_pass;
+    const int passes = job.passes > 0 ? job.passes : ctx.scene.render.passes;
+    const int64_t photons_per_pass = job.photons_per_pass > 0 ? job.photons_per_pass : ctx.scene.render.photons_per_pass;
     const EmissionMode mode = ctx.scene.emission.mode;
     const std::vector<SectionLayout> layouts = plan_sections(ctx, plan, job.strategy);
     auto resumed = [&](int s) { return s < static_cast<int>(job.on_disk.size()) && job.on_disk[s]; };
@@ -199,14 +127,16 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameOutputs& outputs, const 
     // resumed run exposes as the first did.
     int preview_passes = 0;
     if (exposure_pending && plan.sections == 1 && resumed(0)) {
-        if (root) outputs.set_exposure_plan(exposure_from_disk(ctx, job.exposure_rule, outputs));
+        if (root) outputs.set_exposure_plan(exposure_from_disk(ctx, job.exposure_rule, *job.exr_files));
         exposure_pending = false;
     } else if (exposure_pending && (plan.sections > 1 || start_of(0).finished)) {
         auto t0 = Clock::now();
         // Stopped by an interrupt or, with --time-limit, after a sixteenth of the budget.
         auto stop = [&](int done) { return cancel.load() || (job.budget && job.budget->preview_over(done)); };
-        const ExposurePlan e = exposure_from_preview(ctx, job.exposure_rule, counters, stop, preview_passes);
-        if (root) outputs.set_exposure_plan(e);
+        const ExposurePreview e = exposure_from_preview(ctx, job.exposure_rule, stop);
+        preview_passes = e.passes;
+        stats.counts.add(e.counts);
+        if (root) outputs.set_exposure_plan(e.exposure);
         exposure_pending = false;
         stats.passes_run += preview_passes;
         malloc_trim(0);  // the preview's photon map and buffer: back to the system
@@ -253,19 +183,7 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameOutputs& outputs, const 
                         : std::make_unique<SectionBuffer>(ctx.pixels(), s->layout, ctx.initial_radius, ctx.has_ambient());
         }
         SectionBuffer* live = buffer.get();
-        char line[256];
-        std::snprintf(line, sizeof line, "slowlight: section %d/%d, frames %d-%d: %s of time buckets%s%s", index + 1,
-                      plan.sections, s->layout.first_frame, s->layout.end_frame - 1,
-                      format_bytes(SectionBuffer::bytes_needed(ex ? PixelShare{0, ex->ranks(), ctx.pixels()}.count()
-                                                                  : ctx.pixels(),
-                                                               s->layout.slots(), ctx.has_ambient()))
-                          .c_str(),
-                      ex ? " per rank" : "",
-                      start.from_checkpoint ? (start.finished ? "; finished, from its checkpoint"
-                                                              : ("; from its checkpoint at pass " +
-                                                                 std::to_string(start.passes_done)).c_str())
-                                            : "");
-        log(line);
+        log(section_line(ctx, s->layout, plan.sections, start));
         bool by_interrupt = false;
         if (start.finished) {
             s->run.buffer = std::move(buffer);
@@ -282,8 +200,7 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameOutputs& outputs, const 
                 if (cancel.load()) return by_interrupt = true;
                 return job.budget != nullptr && job.budget->stop_before_pass(live->passes_done);
             };
-            s->run = render_section(ctx, s->layout, passes, photons_per_pass, counters, on_pass, stop, std::move(buffer),
-                                    &cancel);
+            s->run = render_section(ctx, s->layout, passes, photons_per_pass, on_pass, stop, std::move(buffer), &cancel);
         }
         s->passes = s->run.buffer->passes_done;
         // (a pass abandoned while its photons were traced ends the section without asking `stop`)
@@ -315,8 +232,11 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameOutputs& outputs, const 
         stats.render.gather += s->run.times.gather;
         stats.render.grid += s->run.times.grid;
         stats.render.volume += s->run.times.volume;
+        stats.render.volume_cpu += s->run.times.volume_cpu;
+        stats.counts.add(s->run.counts);
         stats.photon_map_bytes = std::max(stats.photon_map_bytes, s->run.photon_map_bytes);
-        if (!s->complete) s->run.buffer.reset();
+        if (s->complete) outputs.section_rendered(index, *s->run.buffer);
+        else s->run.buffer.reset();
         return s;
     });
     using Split = flow::multifunction_node<SectionPtr, std::tuple<FrameJob>>;
@@ -333,7 +253,7 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameOutputs& outputs, const 
         FrameImage& img = *out;
         if (s.from_disk) {
             // Checked again as it is read: the file may have changed since --resume judged it.
-            img.rgb = read_verified_exr(outputs.exr_frame_path(job_in.frame),
+            img.rgb = read_verified_exr(job.exr_files->exr_frame_path(job_in.frame),
                                         resume_expectation(ctx.width, ctx.height, job.fingerprint, job_in.frame));
         } else {
             if (!s.assembler) {
@@ -342,7 +262,9 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameOutputs& outputs, const 
                     std::vector<float> steady;
                     s.assembler->steady(steady);
                     whole_image(steady);
-                    const std::vector<uint8_t> lamps = emitter_pixels(ctx);
+                    // (a camera ray per pixel: only when the exposure or the black check needs it)
+                    const std::vector<uint8_t> lamps =
+                        exposure_pending || job.check_black ? emitter_pixels(ctx) : std::vector<uint8_t>();
                     // Decided here, handed to the outputs only by the write stage; nothing else
                     // sets it meanwhile: with several sections the preview fixed it before.
                     if (exposure_pending) {  // one section: it holds every frame
@@ -351,12 +273,12 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameOutputs& outputs, const 
                         if (root) img.exposure = meter.decide();
                         exposure_pending = false;
                     }
-                    if (root) {
+                    if (root && job.check_black) {
                         ExposureMeter light(EmissionMode::Constant, {}, lamps);
                         light.add_steady(steady.data(), ctx.pixels());
                         stats.steady_black = light.decide().black;
-                        img.steady = std::move(steady);
                     }
+                    if (root) img.steady = std::move(steady);
                 }
             }
             s.assembler->frame(job_in.frame, img.rgb);
@@ -394,11 +316,12 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameOutputs& outputs, const 
         if (last) {  // free the section's buckets before another section may allocate its own
             if (!img.section->partial) ++stats.sections_done;
             // Its frames are in --exr-dir now: they, not the checkpoint, are what --resume reads.
-            if (job.checkpointer && !img.section->partial && !outputs.exr_dir().empty())
+            if (job.checkpointer && !img.section->partial && job.exr_files && !job.exr_files->exr_dir().empty())
                 job.checkpointer->remove(img.section->layout.index);
             img.section->assembler.reset();
             img.section->run.buffer.reset();
             malloc_trim(0);  // hand the section's freed working memory back before the next one grows
+            outputs.section_written(img.section->layout.index);
         }
         std::get<0>(out).try_put(flow::continue_msg());
         if (last) std::get<1>(out).try_put(flow::continue_msg());
@@ -416,9 +339,9 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameOutputs& outputs, const 
     sections.activate();
     g.wait_for_all();
 
-    stats.photons = counters.photons.photons.load();
-    stats.photon_records = counters.photons.stored.load();
-    stats.rays = counters.photons.rays.load() + counters.camera.rays.load();
+    stats.photons = stats.counts.photons;
+    stats.photon_records = stats.counts.stored;
+    stats.rays = stats.counts.rays();
     stats.interrupted = stopped();
     if (ex) {  // every rank counted its own photons and rays: the job's totals
         uint64_t totals[4] = {stats.photons, stats.photon_records, stats.rays, stats.interrupted ? 1u : 0u};

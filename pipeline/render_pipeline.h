@@ -1,5 +1,6 @@
 #pragma once
-// The streaming frame pipeline, a TBB flow graph over sections and frames:
+// The streaming frame pipeline, a TBB flow graph over sections and frames, into a frame sink
+// (the program's FrameOutputs, or images in memory through render_frames.h):
 //
 //   sections -> limiter(1 or 2 alive) -> render section (its own pass graph)
 //            -> split into frames -> queue -> limiter(2 frames) -> assemble -> write
@@ -18,10 +19,12 @@
 #include "config/run_options.h"
 #include "pipeline/exposure.h"
 #include "pipeline/frame_outputs.h"
+#include "pipeline/frame_sink.h"
 #include "pipeline/checkpoint.h"
 #include "pipeline/memory_plan.h"
 #include "pipeline/preview_sheet.h"
 #include "pipeline/resume_checkpoints.h"
+#include "pipeline/section_plan.h"
 #include "pipeline/time_budget.h"
 #include "stages/render/render_context.h"
 #include "stages/render/section_renderer.h"
@@ -30,8 +33,9 @@ namespace sl {
 
 struct PipelineStats {
     StageTimes render;
+    RenderCounts counts;  // every pass's photons and rays, the exposure preview's included (this rank's)
     double exposure_pass = 0, assembly = 0, writing = 0;
-    uint64_t photons = 0, rays = 0, photon_records = 0, photon_map_bytes = 0;
+    uint64_t photons = 0, rays = 0, photon_records = 0, photon_map_bytes = 0;  // totals of `counts`
     int sections_done = 0, sections_resumed = 0;
     int passes_run = 0;  // photon passes traced, the exposure preview's included
     bool interrupted = false;
@@ -53,9 +57,13 @@ struct PipelineJob {
     const RenderContext* ctx = nullptr;
     MemoryPlan plan;
     Strategy strategy = Strategy::Single;
+    int passes = 0;                // per section; 0: the scene's
+    int64_t photons_per_pass = 0;  // 0: the scene's
     std::vector<bool> on_disk;  // per section: already rendered (--resume)
+    const FrameOutputs* exr_files = nullptr;  // where on_disk's frames are read back (and --exr-dir)
     ExposureRule exposure_rule;
     std::string fingerprint;    // of this render's settings: resumed frames must carry it
+    bool check_black = true;    // find PipelineStats::steady_black (the program warns of it)
     std::vector<SectionStart> starts;  // per section: a checkpoint to continue from (--resume)
     Checkpointer* checkpointer = nullptr;  // saves the section in progress; null: never
     TimeBudget* budget = nullptr;          // --time-limit; null: none
@@ -66,9 +74,7 @@ struct PipelineJob {
     std::function<void(int passes)> passes_fixed;              // --time-limit decided the passes
 };
 
-std::vector<SectionLayout> plan_sections(const RenderContext& ctx, const MemoryPlan& plan, Strategy strategy);
-
-PipelineStats run_pipeline(const PipelineJob& job, FrameOutputs& outputs, const ProgressFn& progress,
+PipelineStats run_pipeline(const PipelineJob& job, FrameSink& outputs, const ProgressFn& progress,
                            const std::atomic<bool>& cancel);
 
 }  // namespace sl

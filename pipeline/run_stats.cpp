@@ -29,7 +29,7 @@ void write_stats_json(const std::string& path, const RunSummary& s) {
     j["photons_per_pass"] = sc.render.photons_per_pass;
     j["width"] = sc.camera.width;
     j["height"] = sc.camera.height;
-    j["strategy"] = s.strategy == Strategy::Single ? "single" : "frame-by-frame";
+    j["strategy"] = strategy_name(s.strategy);
     j["threads"] = s.threads;
     j["wall_seconds"] = s.wall_seconds;
     j["stage_seconds"] = {

@@ -13,7 +13,8 @@
 #include "stages/render/frame_assembly.h"
 #include "stages/render/photon_map.h"
 #include "stages/render/section_layout.h"
-#include "stages/render/section_renderer.h"
+#include "pipeline/frames_in_memory.h"
+#include "pipeline/render_frames.h"
 #include "bench/common/random_rays.h"
 
 namespace report {
@@ -36,46 +37,35 @@ double cpu_seconds() {
            1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
 }
 
-const char* name(Strategy s) { return s == Strategy::Single ? "single" : "frame-by-frame"; }
-
 RunResult render(const sl::RenderContext& ctx, Strategy strategy, int passes, int64_t photons_per_pass,
                  bool keep_frames) {
     RunResult out;
     out.passes = passes;
     out.photons_per_pass = photons_per_pass;
-    const int frames = ctx.timeline.frames;
-    const int sections = strategy == Strategy::Single ? 1 : frames;
-    const sl::EmissionMode mode = ctx.scene.emission.mode;
-    sl::SectionCounters counters;
-    Image rgb;
+    sl::FramesInMemory sink;
+    sink.keep_frames = keep_frames;
     auto t0 = Clock::now();
     const double c0 = cpu_seconds();
-    for (int k = 0; k < sections; ++k) {
-        auto ts = Clock::now();
-        const double cs = cpu_seconds();
-        sl::SectionLayout layout = sl::make_section(ctx.timeline, ctx.scene.emission.mode, ctx.pulse_buckets, sections, k);
-        // As the pipeline's layout_for(): the baseline renders every frame with full paths.
-        if (strategy == Strategy::FrameByFrame) layout.full_paths = true;
-        sl::SectionRun run = sl::render_section(ctx, layout, passes, photons_per_pass, counters);
-        out.camera_s += run.times.camera;
-        out.photons_s += run.times.photons;
-        out.gather_s += run.times.gather;
-        auto ta = Clock::now();
-        sl::FrameAssembler assembler(*run.buffer, mode, ctx.pulse_buckets);
-        for (int f = layout.first_frame; f < layout.end_frame; ++f) {
-            assembler.frame(f, rgb);
-            if (keep_frames) out.frames.push_back(rgb);
-        }
-        if (k == sections - 1) assembler.steady(out.steady);
-        out.assembly_s += since(ta);
+    auto ts = t0;
+    double cs = c0;
+    sink.on_section_written = [&](int) {  // a section's wall and CPU time: its passes and its frames
         out.section_s.push_back(since(ts));
         out.section_cpu_s.push_back(cpu_seconds() - cs);
-    }
+        ts = Clock::now();
+        cs = cpu_seconds();
+    };
+    const sl::PipelineStats stats = sl::render_frames(ctx, {strategy, 1, passes, photons_per_pass}, sink);
     out.wall_s = since(t0);
     out.cpu_s = cpu_seconds() - c0;
-    out.camera_rays = counters.camera.rays.load();
-    out.photon_rays = counters.photons.rays.load();
-    out.photons = counters.photons.photons.load();
+    out.frames = std::move(sink.frames);
+    out.steady = std::move(sink.steady);
+    out.camera_s = stats.render.camera;
+    out.photons_s = stats.render.photons;
+    out.gather_s = stats.render.gather;
+    out.assembly_s = stats.assembly;
+    out.camera_rays = stats.counts.camera_rays;
+    out.photon_rays = stats.counts.photon_rays;
+    out.photons = stats.counts.photons;
     return out;
 }
 

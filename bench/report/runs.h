@@ -10,6 +10,7 @@
 #include <memory>
 #include <vector>
 
+#include "config/run_options.h"
 #include "config/scene_desc.h"
 #include "stages/render/render_context.h"
 
@@ -30,10 +31,11 @@ struct RunResult {
     int64_t photons_per_pass = 0;
 };
 
-enum class Strategy { Single, FrameByFrame };
-const char* name(Strategy s);
+using sl::Strategy;
+using sl::strategy_name;
 
-// Renders every frame of ctx's timeline (and the steady image) with the given strategy.
+// Renders every frame of ctx's timeline (and the steady image) with the given strategy, through
+// the renderer's own in-process render (pipeline/render_frames.h).
 // With keep_frames false the frames are still assembled (and timed) but not stored.
 RunResult render(const sl::RenderContext& ctx, Strategy strategy, int passes, int64_t photons_per_pass,
                  bool keep_frames = true);

@@ -86,7 +86,7 @@ void write_csvs(const Report& r, const fs::path& dir) {
          "rmse_frames_mean,rmse_frames_mean_ref_noise_removed,rel_rmse_frames_mean,max_abs_diff_vs_single,"
          "rmse_indirect,rmse_indirect_ref_noise_removed\n";
     for (const LadderPoint& p : r.ladder)
-        c << fmt("%s,%d,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%s,%s,%s\n", name(p.strategy), p.passes, p.wall_s, p.cpu_s,
+        c << fmt("%s,%d,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%s,%s,%s\n", strategy_name(p.strategy), p.passes, p.wall_s, p.cpu_s,
                  p.rmse_steady,
                  p.rmse_steady_corr, p.rmse_steady / r.ref.mean_steady, p.rmse_frames, p.rmse_frames_corr,
                  p.rmse_frames / r.ref.mean_steady,
@@ -99,7 +99,7 @@ void write_csvs(const Report& r, const fs::path& dir) {
     fr << "strategy,passes,frame,t_begin_ns,t_end_ns,rmse,reference_mean\n";
     for (const LadderPoint& p : r.ladder)
         for (size_t k = 0; k < p.frame_rmse.size(); ++k)
-            fr << fmt("%s,%d,%zu,%.6g,%.6g,%.6g,%.6g\n", name(p.strategy), p.passes, k,
+            fr << fmt("%s,%d,%zu,%.6g,%.6g,%.6g,%.6g\n", strategy_name(p.strategy), p.passes, k,
                       r.timeline.edge(static_cast<int64_t>(k)), r.timeline.edge(static_cast<int64_t>(k) + 1),
                       p.frame_rmse[k], mean(r.ref.frames[k]));
     write_file(dir / "frame_rmse.csv", fr.str());
@@ -234,7 +234,7 @@ std::string markdown(const Report& r, const Fits& f) {
          "ref. noise out | RMSE indirect | ref. noise out | max abs fbf - single |\n"
          "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     for (const LadderPoint& p : r.ladder)
-        m << fmt("| %s | %d | %.2f | %.2f | %.4g | %.4f | %.4g | %.4g | %.4f | %.4g | %s | %s | %s |\n", name(p.strategy),
+        m << fmt("| %s | %d | %.2f | %.2f | %.4g | %.4f | %.4g | %.4g | %.4f | %.4g | %s | %s | %s |\n", strategy_name(p.strategy),
                  p.passes, p.wall_s, p.cpu_s, p.rmse_steady, p.rmse_steady / r.ref.mean_steady, p.rmse_steady_corr, p.rmse_frames,
                  p.rmse_frames / r.ref.mean_steady, p.rmse_frames_corr,
                  p.rmse_indirect >= 0 ? fmt("%.4g", p.rmse_indirect).c_str() : "",

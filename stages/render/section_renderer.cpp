@@ -14,14 +14,36 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+RenderCounts counts_of(const SectionCounters& c) {
+    RenderCounts n;
+    n.photons = c.photons.photons.load();
+    n.photon_rays = c.photons.rays.load();
+    n.stored = c.photons.stored.load();
+    n.stored_volume = c.photons.stored_volume.load();
+    n.camera_rays = c.camera.rays.load();
+    n.beam_segments = c.camera.beam_segments.load();
+    n.beam_hits = c.camera.beam_hits.load();
+    return n;
+}
+
 }  // namespace
 
+void RenderCounts::add(const RenderCounts& o) {
+    photons += o.photons;
+    photon_rays += o.photon_rays;
+    stored += o.stored;
+    stored_volume += o.stored_volume;
+    camera_rays += o.camera_rays;
+    beam_segments += o.beam_segments;
+    beam_hits += o.beam_hits;
+}
+
 SectionRun render_section(const RenderContext& ctx, const SectionLayout& layout, int passes,
-                          int64_t photons_per_pass, SectionCounters& counters,
-                          const PassCallback& on_pass, const std::function<bool()>& cancelled,
+                          int64_t photons_per_pass, const PassCallback& on_pass, const std::function<bool()>& cancelled,
                           std::unique_ptr<SectionBuffer> resume_from, const std::atomic<bool>* abandon) {
     namespace flow = tbb::flow;
     SectionRun run;
+    SectionCounters counters;
     RankExchange* ex = ctx.exchange;  // resumed sections come only to a single process
     run.buffer = resume_from ? std::move(resume_from)
                  : ex        ? std::make_unique<SectionBuffer>(PixelShare{ex->rank(), ex->ranks(), ctx.pixels()}, layout,
@@ -40,9 +62,12 @@ SectionRun render_section(const RenderContext& ctx, const SectionLayout& layout,
         run_passes_on_ranks(ctx, layout, passes, photons_per_pass, counters, buffer, photons, volume.get(), run.times,
                             on_pass, cancelled);
         run.photon_map_bytes = photons.bytes() + (volume ? volume->bytes() : 0);
+        run.counts = counts_of(counters);
         return run;
     }
 
+    // A graph of serial nodes behind a limiter of one: the passes run as a sequence (the source
+    // asks `cancelled` where a pass really starts).
     flow::graph g;
     int next_pass = buffer.passes_done;
     // The source makes its next item ahead of time, so `cancelled` is asked where a pass really
@@ -90,6 +115,7 @@ SectionRun render_section(const RenderContext& ctx, const SectionLayout& layout,
     source.activate();
     g.wait_for_all();
     run.photon_map_bytes = photons.bytes() + (volume ? volume->bytes() : 0);
+    run.counts = counts_of(counters);
     return run;
 }
 

@@ -15,9 +15,9 @@
 
 #include "config/parse_scene.h"
 #include "config/scene_desc.h"
-#include "stages/render/frame_assembly.h"
+#include "pipeline/frames_in_memory.h"
+#include "pipeline/render_frames.h"
 #include "stages/render/render_context.h"
-#include "stages/render/section_renderer.h"
 #include "tests/common/temp_dir.h"
 #include "tests/render/scenes_for_tests.h"
 
@@ -59,13 +59,8 @@ inline Rendered render(const SceneDesc& scene, int sections = 1, bool frame_by_f
     out.width = ctx.width;
     out.height = ctx.height;
     out.initial_radius = ctx.initial_radius;
-    if (frame_by_frame) sections = ctx.timeline.frames;
-    SectionCounters counters;
-    for (int k = 0; k < sections; ++k) {
-        SectionLayout layout = make_section(ctx.timeline, ctx.scene.emission.mode, ctx.pulse_buckets, sections, k);
-        if (frame_by_frame) layout.full_paths = true;
-        SectionRun run = render_section(ctx, layout, scene.render.passes, scene.render.photons_per_pass, counters);
-        const SectionBuffer& b = *run.buffer;
+    FramesInMemory sink;
+    sink.on_section_rendered = [&](int, const SectionBuffer& b) {
         out.buffer_non_finite += count_non_finite(b.accum) + count_non_finite(b.ambient) +
                                  count_non_finite(b.radius2) + count_non_finite(b.photon_count);
         for (double r2 : b.radius2) {
@@ -78,13 +73,10 @@ inline Rendered render(const SceneDesc& scene, int sections = 1, bool frame_by_f
         }
         out.radius2 = b.radius2;
         out.photon_count = b.photon_count;
-        FrameAssembler a(b, scene.emission.mode, ctx.pulse_buckets);
-        for (int f = layout.first_frame; f < layout.end_frame; ++f) {
-            out.frames.emplace_back();
-            a.frame(f, out.frames.back());
-        }
-        if (k == sections - 1) a.steady(out.steady);
-    }
+    };
+    render_frames(ctx, {frame_by_frame ? Strategy::FrameByFrame : Strategy::Single, sections}, sink);
+    out.frames = std::move(sink.frames);
+    out.steady = std::move(sink.steady);
     return out;
 }
 

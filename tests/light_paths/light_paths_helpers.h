@@ -1,16 +1,16 @@
 #pragma once
 // Helpers for the light-path physics tests (issue 6): scenes built in code and an in-process
-// render of the whole timeline (copied from tests/render/render_helpers.h, which this folder
-// must not depend on), plus per-pixel arrival-time measurements.
+// render of the whole timeline (the program's own render, frames kept in memory), plus
+// per-pixel arrival-time measurements.
 #include <cmath>
 #include <vector>
 
 #include "config/scene_desc.h"
 #include "core/camera.h"
 #include "core/sampling.h"
-#include "stages/render/frame_assembly.h"
+#include "pipeline/frames_in_memory.h"
+#include "pipeline/render_frames.h"
 #include "stages/render/render_context.h"
-#include "stages/render/section_renderer.h"
 #include "tests/render/scenes_for_tests.h"
 
 namespace sl::lp {
@@ -31,15 +31,10 @@ inline Rendered render_all(const SceneDesc& scene) {
     Rendered out;
     out.width = ctx.width;
     out.height = ctx.height;
-    SectionCounters counters;
-    SectionLayout layout = make_section(ctx.timeline, ctx.scene.emission.mode, ctx.pulse_buckets, 1, 0);
-    SectionRun run = render_section(ctx, layout, scene.render.passes, scene.render.photons_per_pass, counters);
-    FrameAssembler a(*run.buffer, scene.emission.mode, ctx.pulse_buckets);
-    for (int f = layout.first_frame; f < layout.end_frame; ++f) {
-        out.frames.emplace_back();
-        a.frame(f, out.frames.back());
-    }
-    a.steady(out.steady);
+    FramesInMemory sink;
+    render_frames(ctx, {}, sink);
+    out.frames = std::move(sink.frames);
+    out.steady = std::move(sink.steady);
     return out;
 }
 

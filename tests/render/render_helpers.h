@@ -1,10 +1,12 @@
 #pragma once
-// Runs one whole-timeline convergence in-process and returns its frames and steady image.
+// Runs one whole-timeline convergence in-process (the program's own render, its frames kept in
+// memory) and returns its frames and steady image.
+#include <cmath>
 #include <vector>
 
-#include "stages/render/frame_assembly.h"
+#include "pipeline/frames_in_memory.h"
+#include "pipeline/render_frames.h"
 #include "stages/render/render_context.h"
-#include "stages/render/section_renderer.h"
 
 namespace sl::test {
 
@@ -14,22 +16,15 @@ struct Rendered {
     int width = 0, height = 0;
 };
 
-inline Rendered render_all(const SceneDesc& scene, EmissionMode mode = EmissionMode::Constant, int sections = 1) {
+inline Rendered render_all(const SceneDesc& scene, int sections = 1) {
     RenderContext ctx(scene);
     Rendered out;
     out.width = ctx.width;
     out.height = ctx.height;
-    SectionCounters counters;
-    for (int k = 0; k < sections; ++k) {
-        SectionLayout layout = make_section(ctx.timeline, ctx.scene.emission.mode, ctx.pulse_buckets, sections, k);
-        SectionRun run = render_section(ctx, layout, scene.render.passes, scene.render.photons_per_pass, counters);
-        FrameAssembler a(*run.buffer, mode, ctx.pulse_buckets);
-        for (int f = layout.first_frame; f < layout.end_frame; ++f) {
-            out.frames.emplace_back();
-            a.frame(f, out.frames.back());
-        }
-        if (k == sections - 1) a.steady(out.steady);
-    }
+    FramesInMemory sink;
+    render_frames(ctx, {Strategy::Single, sections}, sink);
+    out.frames = std::move(sink.frames);
+    out.steady = std::move(sink.steady);
     return out;
 }
 

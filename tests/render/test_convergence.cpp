@@ -50,8 +50,8 @@ TEST(Determinism, SameSeedSameImageAnyThreadCount) {
 
 TEST(Sections, SplitRenderMatchesSingleWithinNoise) {
     SceneDesc s = test::small_box(16, 6, 8000);
-    test::Rendered one = test::render_all(s, EmissionMode::Constant, 1);
-    test::Rendered four = test::render_all(s, EmissionMode::Constant, 4);
+    test::Rendered one = test::render_all(s, 1);
+    test::Rendered four = test::render_all(s, 4);
     ASSERT_EQ(one.frames.size(), four.frames.size());
     // Same seeds: the sections trace the same photon paths (cut early where they cannot
     // reach the section), so only the radius schedules differ slightly.

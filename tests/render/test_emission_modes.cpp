@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "render_helpers.h"
+#include "stages/render/frame_assembly.h"
 #include "scenes_for_tests.h"
 
 namespace sl {
@@ -13,22 +14,24 @@ TEST(EmissionModes, PulseFramesSumToLastConstantFrameMinusBeforeStart) {
     SceneDesc s = test::small_box(16, 4, 4000, 4);
     s.time = {5, 17, 12, 24};  // starts after light has already reached the walls
     RenderContext ctx(s);
-    SectionCounters counters;
-    SectionLayout layout = make_section(ctx.timeline, ctx.scene.emission.mode, 1, 1, 0);
-    SectionRun run = render_section(ctx, layout, s.render.passes, s.render.photons_per_pass, counters);
-    FrameAssembler constant(*run.buffer, EmissionMode::Constant, 1), pulse(*run.buffer, EmissionMode::Pulse, 1);
     std::vector<float> last, frame, sum(ctx.pixels() * 3, 0.0f);
-    for (int k = 0; k < s.time.frames; ++k) {
-        constant.frame(k, last);
-        pulse.frame(k, frame);
-        for (size_t i = 0; i < sum.size(); ++i) sum[i] += frame[i];
-    }
+    std::vector<float> slot0;  // what arrived before start, per pixel and channel, over the passes
+    FramesInMemory sink;
+    sink.on_section_rendered = [&](int, const SectionBuffer& buffer) {  // the one section, assembled both ways
+        FrameAssembler constant(buffer, EmissionMode::Constant, 1), pulse(buffer, EmissionMode::Pulse, 1);
+        for (int k = 0; k < s.time.frames; ++k) {
+            constant.frame(k, last);
+            pulse.frame(k, frame);
+            for (size_t i = 0; i < sum.size(); ++i) sum[i] += frame[i];
+        }
+        for (size_t i = 0; i < sum.size(); ++i) slot0.push_back(buffer.slot(i / 3, 0)[i % 3] / float(buffer.passes_done));
+    };
+    render_frames(ctx, {}, sink);
+    ASSERT_EQ(slot0.size(), sum.size());
     double before = 0, total_sum = 0, total_last = 0;
-    for (size_t p = 0; p < ctx.pixels(); ++p)
-        for (int c = 0; c < 3; ++c) before += run.buffer->slot(p, 0)[c] / float(run.buffer->passes_done);
+    for (float v : slot0) before += v;
     for (size_t i = 0; i < sum.size(); ++i) {
-        EXPECT_NEAR(sum[i], last[i] - run.buffer->slot(i / 3, 0)[i % 3] / float(run.buffer->passes_done),
-                    1e-4 * (1 + last[i]));
+        EXPECT_NEAR(sum[i], last[i] - slot0[i], 1e-4 * (1 + last[i]));
         total_sum += sum[i];
         total_last += last[i];
     }
@@ -58,14 +61,17 @@ TEST(EmissionModes, WiderPulseIsTheSumOfNarrowOnes) {
     s.emission.width_frames = 3;
     RenderContext wide_ctx(s);
     ASSERT_EQ(wide_ctx.pulse_buckets, 3);
-    SectionCounters counters;
-    SectionRun run = render_section(wide_ctx, make_section(wide_ctx.timeline, wide_ctx.scene.emission.mode, 3, 1, 0), 3, 3000, counters);
-    FrameAssembler wide(*run.buffer, EmissionMode::Pulse, 3), narrow(*run.buffer, EmissionMode::Pulse, 1);
-    std::vector<std::vector<float>> n(12);
-    std::vector<float> w;
-    for (int k = 0; k < 12; ++k) narrow.frame(k, n[k]);
+    std::vector<std::vector<float>> n(12), wide(12);
+    FramesInMemory sink;
+    sink.on_section_rendered = [&](int, const SectionBuffer& buffer) {  // assembled 1 and 3 frames wide
+        FrameAssembler w(buffer, EmissionMode::Pulse, 3), narrow(buffer, EmissionMode::Pulse, 1);
+        for (int k = 0; k < 12; ++k) narrow.frame(k, n[k]);
+        for (int k = 2; k < 12; ++k) w.frame(k, wide[k]);
+    };
+    render_frames(wide_ctx, {Strategy::Single, 1, 3, 3000}, sink);
     for (int k = 2; k < 12; ++k) {
-        wide.frame(k, w);
+        const std::vector<float>& w = wide[k];
+        ASSERT_FALSE(w.empty());
         for (size_t i = 0; i < w.size(); ++i) ASSERT_NEAR(w[i], n[k][i] + n[k - 1][i] + n[k - 2][i], 1e-4 * (1 + w[i]));
     }
 }

@@ -122,7 +122,7 @@ void check_pulse(Vec3 sigma_s, bool tof, int lit_frames) {
     s.render.photons_per_pass = 20000;
     s.render.radius = 0.03f;
     s.render.camera_tof = tof;
-    test::Rendered r = test::render_all(s, EmissionMode::Pulse);
+    test::Rendered r = test::render_all(s);
     const double half_w = 3.5;  // x seen at z = 0 spans [-3.5, 3.5]
     // The beam's kernel: the radius, or a pixel footprint at the beam's distance (4 m) if wider.
     const double widen = std::max(0.05, kFootprintRadii * PinholeCamera(s.camera).pixel_footprint(4) + 0.01);

@@ -1,0 +1,93 @@
+#include "pipeline/exposure_preview.h"
+
+#include <algorithm>
+
+#include "pipeline/distributed/image_gather.h"
+#include "stages/output/exr_io.h"
+#include "stages/render/frame_assembly.h"
+
+namespace sl {
+namespace {
+
+// Turns this rank's pixels of an image into the whole image on rank 0 (and an empty one on the
+// other ranks); in one process the image already is whole.
+void whole_image_of(const RenderContext& ctx, std::vector<float>& rgb) {
+    if (ctx.exchange) gather_image(*ctx.exchange, ctx.pixels(), rgb);
+}
+
+// The preview's passes: an eighth of the render's, at least 4 (or all, if fewer).
+int preview_passes(int passes) { return std::min(passes, std::max(4, passes / 8)); }
+
+}  // namespace
+
+void measure_buffer(const SectionBuffer& buffer, const RenderContext& ctx, ExposureMeter& meter,
+                    const std::vector<float>* steady) {
+    std::vector<float> rgb;
+    if (steady) {
+        if (!steady->empty()) meter.add_steady(steady->data(), ctx.pixels());
+    } else if (buffer.layout.has_after) {  // the full-path section: its slots sum to the steady image
+        FrameAssembler(buffer, EmissionMode::Pulse, 1).steady(rgb);  // (no running sum needed for it)
+        whole_image_of(ctx, rgb);
+        if (!rgb.empty()) meter.add_steady(rgb.data(), ctx.pixels());
+    }
+    if (!meter.wants_frames()) return;
+    FrameAssembler a(buffer, ctx.scene.emission.mode, ctx.pulse_buckets);
+    for (int f = buffer.layout.first_frame; f < buffer.layout.end_frame; ++f) {
+        a.frame(f, rgb);
+        whole_image_of(ctx, rgb);
+        if (!rgb.empty()) meter.add_frame(f, rgb.data(), ctx.pixels());
+    }
+}
+
+// A short convergence made only to choose the exposure before the first section's frames are
+// encoded (with one section, the section itself provides it): the steady image at full
+// resolution when that is all the rule needs; every frame at a quarter of the resolution (a
+// sixteenth of the memory) for pulses and --exposure-follow. The statistic is a mean over
+// pixels, so neither the resolution nor the preview's fewer passes move it.
+ExposurePreview exposure_from_preview(const RenderContext& ctx, const ExposureRule& rule,
+                                      const std::function<bool(int)>& stop) {
+    ExposurePreview out;
+    const int passes = preview_passes(ctx.scene.render.passes);
+    auto on_pass = [&](int p) { out.passes = p; };
+    auto cancelled = [&] { return stop(out.passes); };
+    const int64_t photons = ctx.scene.render.photons_per_pass;
+    const EmissionMode mode = ctx.scene.emission.mode;
+    if (mode == EmissionMode::Pulse || rule.follow) {
+        SceneDesc small = ctx.scene;
+        // At least 64 pixels a side (or the image's own): a mean over fewer is too noisy.
+        small.camera.width = std::max(std::min(64, ctx.width), ctx.width / 4);
+        small.camera.height = std::max(std::min(64, ctx.height), ctx.height / 4);
+        small.render.radius = ctx.initial_radius;
+        RenderContext preview(small);
+        preview.exchange = ctx.exchange;
+        SectionLayout l = make_section(preview.timeline, mode, preview.pulse_buckets, 1, 0);
+        SectionRun run = render_section(preview, l, passes, photons, on_pass, cancelled);
+        ExposureMeter meter(mode, rule, emitter_pixels(preview));
+        measure_buffer(*run.buffer, preview, meter);
+        out.exposure = meter.decide();
+        out.counts = run.counts;
+        return out;
+    }
+    SectionLayout l;
+    l.first_frame = l.end_frame = ctx.timeline.frames;
+    l.first_bucket = l.end_frame;
+    l.full_paths = true;
+    SectionRun run = render_section(ctx, l, passes, photons, on_pass, cancelled);
+    ExposureMeter meter(mode, rule, emitter_pixels(ctx));
+    measure_buffer(*run.buffer, ctx, meter);
+    out.exposure = meter.decide();
+    out.counts = run.counts;
+    return out;
+}
+
+ExposurePlan exposure_from_disk(const RenderContext& ctx, const ExposureRule& rule, const FrameOutputs& outputs) {
+    ExposureMeter meter(ctx.scene.emission.mode, rule, emitter_pixels(ctx));
+    ExrImage steady = read_exr(outputs.exr_steady_path(), outputs.frame_size());
+    meter.add_steady(steady.rgb.data(), ctx.pixels());
+    if (meter.wants_frames())
+        for (int f = 0; f < ctx.timeline.frames; ++f)
+            meter.add_frame(f, read_exr(outputs.exr_frame_path(f), outputs.frame_size()).rgb.data(), ctx.pixels());
+    return meter.decide();
+}
+
+}  // namespace sl
