@@ -28,14 +28,12 @@ inline uint64_t cycle_clock() {
 #endif
 }
 
-// Adds radiance arriving at time t (ns) to a pixel's slot for this pass.
-inline void deposit(SectionBuffer& buffer, const Timeline& tl, size_t pixel, double t, Vec3 L) {
+// Adds radiance arriving at time t (ns) to a pixel's slot for this pass (queued, in order with
+// the pixel's gathered photons).
+inline void deposit(SectionBuffer& buffer, DepositQueue& deposits, const Timeline& tl, size_t pixel, double t, Vec3 L) {
     const int s = buffer.layout.slot_of_bucket(tl.bucket(t));
     if (s < 0) return;  // a time this section keeps nothing for
-    float* acc = buffer.slot(pixel, s);
-    acc[0] += L.x;
-    acc[1] += L.y;
-    acc[2] += L.z;
+    deposits.add(buffer.slot(pixel, s), L.x, L.y, L.z);
 }
 
 struct PixelTracer {
@@ -43,6 +41,7 @@ struct PixelTracer {
     SectionBuffer& buffer;
     int pass;
     const HomogeneousMedium* medium;  // null in vacuum
+    DepositQueue& deposits;
     uint64_t rays = 0;
     // The pixel's path, for the estimates at its end.
     VisiblePoint vp{};
@@ -79,7 +78,7 @@ struct PixelTracer {
             if (hit.light >= 0) {  // an emitter seen directly (or through specular surfaces)
                 const size_t l = static_cast<size_t>(hit.light);
                 if (ctx.lights.quad_front_seen(l, d))
-                    deposit(buffer, ctx.timeline, local, tof ? leg_ns : 0.0, beta * ctx.lights.quad_radiance(l));
+                    deposit(buffer, deposits, ctx.timeline, local, tof ? leg_ns : 0.0, beta * ctx.lights.quad_radiance(l));
                 return;
             }
             const SurfaceMaterial& m = ctx.materials[hit.material];
@@ -87,7 +86,7 @@ struct PixelTracer {
             Vec3 nf = toward ? hit.normal : -hit.normal;
             if (m.emits()) {  // an emissive mesh seen directly (or through specular surfaces)
                 Vec3 le = emission_at(m, hit, d);
-                if (!is_black(le)) deposit(buffer, ctx.timeline, pixel, tof ? leg_ns : 0.0, beta * le);
+                if (!is_black(le)) deposit(buffer, deposits, ctx.timeline, local, tof ? leg_ns : 0.0, beta * le);
             }
             if (m.type == MaterialType::Diffuse) {
                 Vec3 ns = toward ? hit.shading_normal : -hit.shading_normal;
@@ -148,7 +147,7 @@ struct PixelTracer {
             if (ctx.geometry.occluded(origin, s.to_light, 0, s.distance * (1 - 1e-4f))) continue;
             Vec3 e = s.irradiance;
             if (medium) e *= medium->transmittance(origin, s.to_light, s.distance);
-            deposit(buffer, ctx.timeline, local, t, f * e);
+            deposit(buffer, deposits, ctx.timeline, local, t, f * e);
         }
     }
 };
@@ -168,18 +167,21 @@ CameraPassTimes camera_pass(const RenderContext& ctx, int pass, const PassPhoton
     Work total = tbb::parallel_reduce(
         tbb::blocked_range<size_t>(0, buffer.radius2.size(), 256), Work{},  // this rank's pixels
         [&](const tbb::blocked_range<size_t>& r, Work w) {
-            PixelTracer tracer{ctx, buffer, pass, medium, 0, {}, false, {}};
+            DepositQueue deposits;  // drained when it goes out of scope, at the range's end
+            PixelTracer tracer{ctx, buffer, pass, medium, deposits, 0, {}, false, {}};
             BeamCounters beam;
             const PixelShare share = buffer.share;
             for (size_t p = r.begin(); p != r.end(); ++p) {
                 const uint64_t c0 = cycle_clock();
                 tracer.trace(share.global(p), p);
                 const uint64_t c1 = cycle_clock();
-                if (volume && tracer.segments.count > 0)
+                if (volume && tracer.segments.count > 0) {
+                    deposits.drain();  // the beam estimate adds to the pixel's slots directly
                     gather_volume_at(ctx, tracer.segments, *volume, photons.emitted, p, buffer, beam);
+                }
                 const uint64_t c2 = cycle_clock();
                 if (tracer.has_visible_point)
-                    gather_photons_at(ctx, tracer.vp, photons.surface, photons.emitted, p, buffer);
+                    gather_photons_at(ctx, tracer.vp, photons.surface, photons.emitted, p, buffer, deposits);
                 w.max_r2 = std::max(w.max_r2, buffer.radius2[p]);
                 const uint64_t c3 = cycle_clock();
                 w.trace += c1 - c0;

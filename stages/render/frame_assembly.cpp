@@ -1,5 +1,6 @@
 #include "stages/render/frame_assembly.h"
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -10,11 +11,25 @@ namespace {
 
 constexpr size_t kTile = SectionBuffer::kTile;
 
-// Calls f(first pixel, pixels in tile, tile index) for every tile, tiles in parallel.
+// Calls f(first pixel, pixels in tile) for every tile, tiles in parallel. A frame reads a few
+// slots of every tile: 192 bytes each, tens of KiB apart with many frames, too far apart for the
+// hardware to see the pattern, so every read waited on memory. The slots [first, last] of the
+// tile kAhead further on are prefetched (when there are only a few; longer runs are contiguous).
 template <class F>
-void for_each_tile(size_t pixels, F&& f) {
-    size_t tiles = (pixels + kTile - 1) / kTile;
-    tbb::parallel_for(size_t(0), tiles, [&](size_t t) { f(t * kTile, std::min(kTile, pixels - t * kTile)); });
+void for_each_tile(const SectionBuffer& buffer, size_t pixels, int first, int last, F&& f) {
+    constexpr size_t kAhead = 4;
+    constexpr int kFewSlots = 4;
+    const size_t tiles = (pixels + kTile - 1) / kTile;
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles, 16), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t t = r.begin(); t != r.end(); ++t) {
+            if (t + kAhead < r.end() && last - first < kFewSlots)
+                for (int s = first; s <= last; ++s) {
+                    const char* at = reinterpret_cast<const char*>(buffer.slot((t + kAhead) * kTile, s));
+                    for (size_t b = 0; b < kTile * 3 * sizeof(float); b += 64) __builtin_prefetch(at + b, 0);
+                }
+            f(t * kTile, std::min(kTile, pixels - t * kTile));
+        }
+    });
 }
 
 }  // namespace
@@ -27,7 +42,7 @@ FrameAssembler::FrameAssembler(const SectionBuffer& buffer, EmissionMode mode, i
     if (mode_ == EmissionMode::Constant) {
         running_.assign(pixels_ * 3, 0.0);
         if (buffer.layout.has_before)
-            for_each_tile(pixels_, [&](size_t p0, size_t n) {
+            for_each_tile(buffer_, pixels_, 0, 0, [&](size_t p0, size_t n) {
                 const float* src = buffer_.slot(p0, 0);
                 for (size_t i = 0; i < n * 3; ++i) running_[p0 * 3 + i] = src[i];
             });
@@ -48,7 +63,7 @@ void FrameAssembler::frame(int global_frame, std::vector<float>& rgb) {
     if (mode_ == EmissionMode::Constant) {
         if (last_slot < next_slot_) throw std::logic_error("constant frames must be assembled in order");
         const int from = next_slot_;
-        for_each_tile(pixels_, [&](size_t p0, size_t n) {
+        for_each_tile(buffer_, pixels_, from, last_slot, [&](size_t p0, size_t n) {
             double* run = &running_[p0 * 3];
             for (int s = from; s <= last_slot; ++s) {
                 const float* src = buffer_.slot(p0, s);  // the tile's pixels for slot s, in a row
@@ -70,7 +85,7 @@ void FrameAssembler::steady(std::vector<float>& rgb) const {
 
 void FrameAssembler::sum_slots(int first, int last, std::vector<float>& rgb) const {
     rgb.assign(pixels_ * 3, 0.0f);
-    for_each_tile(pixels_, [&](size_t p0, size_t n) {
+    for_each_tile(buffer_, pixels_, first, last, [&](size_t p0, size_t n) {
         double sum[kTile * 3] = {};
         for (int s = first; s <= last; ++s) {
             const float* src = buffer_.slot(p0, s);

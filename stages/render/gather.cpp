@@ -7,7 +7,8 @@
 namespace sl {
 
 uint32_t gather_photons_at(const RenderContext& ctx, const VisiblePoint& vp, const PhotonMap& photons,
-                           int64_t photons_emitted, size_t pixel, SectionBuffer& buffer) {
+                           int64_t photons_emitted, size_t pixel, SectionBuffer& buffer,
+                           DepositQueue& deposits) {
     const Timeline& tl = ctx.timeline;
     const SectionLayout& layout = buffer.layout;
     // Normals closer than ~45 degrees count as the same surface: keeps corners from leaking.
@@ -19,27 +20,6 @@ uint32_t gather_photons_at(const RenderContext& ctx, const VisiblePoint& vp, con
     const float wr = vp.weight.x * k, wg = vp.weight.y * k, wb = vp.weight.z * k;
     const Vec3 n = vp.normal;
     uint32_t found = 0;
-    // Deposits are staged in small groups: each one's accumulator is prefetched when found and
-    // added to when the group is full. With many frames a pixel's slots span tens of KiB that
-    // the last pass left in main memory, so a deposit's read-modify-write waits on a cache miss;
-    // staged, a group's misses overlap instead of queueing one behind the other. The adds keep
-    // the order in which photons were found, so every sum is the same as adding at once.
-    constexpr int kGroup = 32;
-    struct Deposit {
-        float* acc;
-        float r, g, b;
-    };
-    Deposit staged[kGroup];
-    int nstaged = 0;
-    auto flush = [&] {
-        for (int i = 0; i < nstaged; ++i) {
-            float* acc = staged[i].acc;
-            acc[0] += staged[i].r;
-            acc[1] += staged[i].g;
-            acc[2] += staged[i].b;
-        }
-        nstaged = 0;
-    };
     photons.for_each_near(vp.position.x, vp.position.y, vp.position.z, static_cast<float>(r2),
                           [&](const PhotonRecord& ph) {
         // cos(angle) < kSameSurface, without normalising the decoded normal.
@@ -50,12 +30,8 @@ uint32_t gather_photons_at(const RenderContext& ctx, const VisiblePoint& vp, con
         ++found;
         const int s = layout.slot_of_bucket(tl.bucket(ph.t_ns + vp.camera_ns));
         if (s < 0) return;
-        float* acc = buffer.slot(pixel, s);
-        __builtin_prefetch(acc, 1);
-        staged[nstaged++] = Deposit{acc, wr * ph.r, wg * ph.g, wb * ph.b};
-        if (nstaged == kGroup) flush();
+        deposits.add(buffer.slot(pixel, s), wr * ph.r, wg * ph.g, wb * ph.b);
     });
-    flush();
     if (found > 0) {
         const float alpha = ctx.scene.render.alpha;
         const double count = buffer.photon_count[pixel];

@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "foundation/vec3.h"
+#include "stages/render/deposit_queue.h"
 #include "stages/render/photon_map.h"
 #include "stages/render/render_context.h"
 #include "stages/render/section_buffer.h"
@@ -21,9 +22,10 @@ struct VisiblePoint {
     uint32_t depth_left;  // photon vertices this point may still accept
 };
 
-// Adds `photons`' estimate at `vp` to pixel `pixel` of `buffer` (flux / (pi R^2 emitted)) and
-// shrinks the pixel's radius. Returns the number of photons found.
+// Adds `photons`' estimate at `vp` to pixel `pixel` of `buffer` (flux / (pi R^2 emitted)), through
+// `deposits` (the additions may still be queued on return), and shrinks the pixel's radius.
+// Returns the number of photons found.
 uint32_t gather_photons_at(const RenderContext& ctx, const VisiblePoint& vp, const PhotonMap& photons,
-                           int64_t photons_emitted, size_t pixel, SectionBuffer& buffer);
+                           int64_t photons_emitted, size_t pixel, SectionBuffer& buffer, DepositQueue& deposits);
 
 }  // namespace sl

@@ -5,11 +5,19 @@
 // hundreds of frames those slots span ~150 MB, and with 4 KiB pages nearly every deposit also
 // missed the TLB. Huge pages need 512x fewer page faults to fill, too. Where the kernel keeps
 // them off (THP "never"), this is an ordinary anonymous mapping.
+//
+// Its memory comes zeroed (a fresh mapping is), so value-initialising an element does nothing:
+// a std::vector sized with it is not filled a second time, the buffer's pages are first touched
+// where the section buffer chooses (by both threads). A vector using it must not shrink and grow
+// again (elements regrown in the old capacity would keep their old values); the section buffer
+// is sized once.
 #include <sys/mman.h>
 
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <new>
+#include <utility>
 
 namespace sl {
 
@@ -25,7 +33,7 @@ struct HugePageAllocator {
     T* allocate(size_t n) {
         const size_t bytes = n * sizeof(T);
         if (bytes < kHuge) {
-            if (void* p = ::operator new(bytes, std::nothrow)) return static_cast<T*>(p);
+            if (void* p = ::operator new(bytes, std::nothrow)) return static_cast<T*>(std::memset(p, 0, bytes));
             throw std::bad_alloc();
         }
         const size_t size = round_up(bytes);
@@ -45,6 +53,16 @@ struct HugePageAllocator {
         const size_t bytes = n * sizeof(T);
         if (bytes < kHuge) ::operator delete(p);
         else munmap(p, round_up(bytes));
+    }
+
+    // Value-initialisation (T()) leaves allocate()'s zeros; anything else is constructed.
+    template <class U>
+    void construct(U* p) noexcept {
+        ::new (static_cast<void*>(p)) U;
+    }
+    template <class U, class... Args>
+    void construct(U* p, Args&&... args) {
+        ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
     }
 
     template <class U>

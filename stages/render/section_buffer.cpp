@@ -1,5 +1,9 @@
 #include "stages/render/section_buffer.h"
 
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+
 namespace sl {
 
 SectionBuffer::SectionBuffer(size_t pixels, const SectionLayout& l, float initial_radius, bool with_ambient)
@@ -7,7 +11,16 @@ SectionBuffer::SectionBuffer(size_t pixels, const SectionLayout& l, float initia
     double r2 = static_cast<double>(initial_radius) * initial_radius;
     radius2.assign(pixels, r2);
     photon_count.assign(pixels, 0.0);
-    accum.assign(padded(pixels) * static_cast<size_t>(slots) * 3, 0.0f);
+    // The allocator's memory is zero already (resize does not fill it again). Its pages are
+    // touched here, by every thread: on a virtual machine a fresh page can cost far more than
+    // zeroing it, and one thread faulting in a 150 MB buffer left the other core idle.
+    accum.resize(padded(pixels) * static_cast<size_t>(slots) * 3);
+    constexpr size_t kPage = 4096 / sizeof(float), kChunk = 512 * kPage;  // 4 KiB pages, 2 MiB chunks
+    float* data = accum.data();
+    const size_t n = accum.size();
+    tbb::parallel_for(size_t(0), (n + kChunk - 1) / kChunk, [&](size_t c) {
+        for (size_t i = c * kChunk, e = std::min(n, i + kChunk); i < e; i += kPage) data[i] = 0.0f;
+    });
     if (with_ambient) ambient.assign(pixels * 3, 0.0f);
     max_radius = initial_radius;
 }
