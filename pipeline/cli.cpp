@@ -19,6 +19,7 @@
 #include "core/errors.h"
 #include "pipeline/distributed/mpi_launch.h"
 #include "pipeline/distributed/rank_start.h"
+#include "pipeline/distributed/resume_on_ranks.h"
 #include "config/text_util.h"
 #include "pipeline/exposure.h"
 #include "config/duration.h"
@@ -166,12 +167,6 @@ int render(RunOptions o, const std::vector<std::string>& argv) {
         if (o.ranks > 0 && o.ranks != ex->ranks())
             throw InputError("command line: --ranks " + std::to_string(o.ranks) + ": this render runs on " +
                              std::to_string(ex->ranks()) + " MPI ranks");
-        // Resuming needs the checkpoint of every rank's pixels: not yet.
-        if (o.resume) throw InputError("command line: --resume is not supported yet when several MPI ranks render");
-        // Each needs every rank's pixels or an agreed pass count: not yet either.
-        if (!o.checkpoint_dir.empty() || o.time_limit || !o.preview_path.empty())
-            throw InputError("command line: --checkpoint, --time-limit and --preview are not supported yet when several "
-                             "MPI ranks render");
         o.ranks = ex->ranks();
     } else if (o.ranks > 1) {
         throw InputError("command line: --ranks " + std::to_string(o.ranks) +
@@ -195,14 +190,12 @@ int render(RunOptions o, const std::vector<std::string>& argv) {
 
     require_an_output(o);  // after every check of the input, before any work
 
-    // Checkpoints: in --checkpoint DIR, or else in --exr-dir, where --resume looks anyway. Not
-    // with several ranks yet (a rank holds a share of the pixels; docs/distributed.md).
+    // Checkpoints: in --checkpoint DIR, or else in --exr-dir, where --resume looks anyway. With
+    // several ranks, rank 0 alone reads and writes them (docs/distributed.md).
     const std::string again = resume_command(argv);
     CheckpointSettings checkpoints;
-    if (!ex) {
-        checkpoints.dir = !o.checkpoint_dir.empty() ? o.checkpoint_dir : o.exr_dir;
-        checkpoints.flag = !o.checkpoint_dir.empty() ? "--checkpoint" : "--exr-dir";
-    }
+    checkpoints.dir = !o.checkpoint_dir.empty() ? o.checkpoint_dir : o.exr_dir;
+    checkpoints.flag = !o.checkpoint_dir.empty() ? "--checkpoint" : "--exr-dir";
     checkpoints.every = o.checkpoint_every.value_or(kDefaultCheckpointEvery);
     checkpoints.keep_finished = o.exr_dir.empty() && plan.sections > 1;
     SectionStateId state_id;
@@ -214,9 +207,9 @@ int render(RunOptions o, const std::vector<std::string>& argv) {
     state_id.height = ctx.height;
     const std::vector<SectionLayout> layouts = plan_sections(ctx, plan, o.strategy);
     std::vector<SectionStart> starts;
-    if (o.resume)
+    if (o.resume && !ex)
         starts = checkpoints_to_resume(checkpoints.dir, state_id, layouts, ctx.has_ambient());
-    else if (!ex)
+    else if (!o.resume && root)
         refuse_existing_checkpoints(checkpoints.dir, again);
 
     OutputSettings out;
@@ -236,7 +229,7 @@ int render(RunOptions o, const std::vector<std::string>& argv) {
     if (!o.cube_path.empty()) out.emitter_runs = mask_runs(emitter_pixels(ctx));
     out.metadata = {{"slowlight:version", SLOWLIGHT_VERSION}, {"slowlight:scene", scene.source},
                     {kFingerprintKey, fingerprint}};
-    if (!o.preview_path.empty()) {  // checked now: a preview that cannot be written must not stop a render
+    if (root && !o.preview_path.empty()) {  // checked now (by rank 0, its writer): a preview that cannot be written must not stop a render
         std::filesystem::path dir = std::filesystem::path(o.preview_path).parent_path();
         std::error_code ec;
         if (std::filesystem::is_directory(o.preview_path, ec) || !std::filesystem::is_directory(dir.empty() ? "." : dir, ec))
@@ -246,7 +239,7 @@ int render(RunOptions o, const std::vector<std::string>& argv) {
                                  ")");
     }
     g_setting_up = false;  // from here on a signal means: deliver what you have
-    Checkpointer checkpointer(checkpoints, state_id);  // makes the directory: checked before any output
+    Checkpointer checkpointer(checkpoints, state_id, ex);  // makes the directory: checked before any output
     // Only rank 0 writes; the others assemble their pixels and send them to it.
     FrameOutputs outputs(root ? out : OutputSettings{});  // every output is checked before rendering starts
 
@@ -257,9 +250,22 @@ int render(RunOptions o, const std::vector<std::string>& argv) {
     job.exposure_rule.percentile = o.exposure_percentile;
     job.exposure_rule.follow = o.exposure_follow;
     job.fingerprint = fingerprint;
-    if (o.resume && !o.exr_dir.empty()) {
-        job.on_disk = sections_on_disk(outputs, layouts, fingerprint, ctx.width, ctx.height);
-        drop_interrupted_sections(outputs, layouts, job.on_disk);
+    auto frames_on_disk = [&](std::vector<bool>& on_disk) {
+        if (!o.resume || o.exr_dir.empty()) return;
+        on_disk = sections_on_disk(outputs, layouts, fingerprint, ctx.width, ctx.height);
+        drop_interrupted_sections(outputs, layouts, on_disk);
+    };
+    if (o.resume && ex) {  // rank 0 judges, every rank gets its answer
+        const int status = share_resume_plan(
+            *ex,
+            [&](std::vector<SectionStart>& st, std::vector<bool>& on_disk) {
+                st = checkpoints_to_resume(checkpoints.dir, state_id, layouts, ctx.has_ambient());
+                frames_on_disk(on_disk);
+            },
+            starts, job.on_disk);
+        if (status != 0) return status;
+    } else {
+        frames_on_disk(job.on_disk);
     }
     job.starts = starts;
     if (checkpointer.enabled()) job.checkpointer = &checkpointer;
@@ -269,8 +275,7 @@ int render(RunOptions o, const std::vector<std::string>& argv) {
                      !(s < static_cast<int>(starts.size()) && starts[s].finished);
     TimeBudget budget = o.time_limit ? TimeBudget(*o.time_limit, t0, to_render) : TimeBudget();
     if (budget.limited()) job.budget = &budget;
-    PreviewSheet preview(ex ? std::string() : o.preview_path, scene.emission.mode, ctx.pulse_buckets, ctx.width,
-                         ctx.height);
+    PreviewSheet preview(o.preview_path, scene.emission.mode, ctx.pulse_buckets, ctx.width, ctx.height, ex);
     if (preview.enabled()) job.preview = &preview;
     if (ex) {  // from here on every rank renders, or none does
         const int status = agree_to_start(*ex, 0, "");

@@ -12,6 +12,7 @@
 #include <optional>
 
 #include "pipeline/distributed/image_gather.h"
+#include "pipeline/distributed/section_state_on_ranks.h"
 #include "pipeline/exposure.h"
 #include "pipeline/resume.h"
 #include "stages/output/exr_frame_check.h"
@@ -204,7 +205,8 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameOutputs& outputs, const 
     } else if (exposure_pending && (plan.sections > 1 || start_of(0).finished)) {
         auto t0 = Clock::now();
         // Stopped by an interrupt or, with --time-limit, after a sixteenth of the budget.
-        auto stop = [&](int done) { return cancel.load() || (job.budget && job.budget->preview_over(done)); };
+        // With ranks, rank 0's clock (the ranks agree on stopping after each pass).
+        auto stop = [&](int done) { return cancel.load() || (job.budget && root && job.budget->preview_over(done)); };
         const ExposurePlan e = exposure_from_preview(ctx, job.exposure_rule, counters, stop, preview_passes);
         if (root) outputs.set_exposure_plan(e);
         exposure_pending = false;
@@ -245,7 +247,9 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameOutputs& outputs, const 
         const SectionStart start = start_of(index);
         std::unique_ptr<SectionBuffer> buffer;
         if (start.from_checkpoint) {
-            buffer = load_section_state(start.path, job.checkpointer->id_for(index), s->layout, ctx.has_ambient());
+            buffer = ex ? load_section_state_on_ranks(*ex, start.path, job.checkpointer->id_for(index), s->layout,
+                                                      ctx.has_ambient(), ctx.pixels())
+                        : load_section_state(start.path, job.checkpointer->id_for(index), s->layout, ctx.has_ambient());
             ++stats.sections_resumed;
         } else {
             buffer = ex ? std::make_unique<SectionBuffer>(PixelShare{ex->rank(), ex->ranks(), ctx.pixels()}, s->layout,
@@ -280,7 +284,8 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameOutputs& outputs, const 
             };
             auto stop = [&] {
                 if (cancel.load()) return by_interrupt = true;
-                return job.budget != nullptr && job.budget->stop_before_pass(live->passes_done);
+                // With ranks, rank 0's budget decides (the ranks agree on stopping after each pass).
+                return job.budget != nullptr && root && job.budget->stop_before_pass(live->passes_done);
             };
             s->run = render_section(ctx, s->layout, passes, photons_per_pass, counters, on_pass, stop, std::move(buffer),
                                     &cancel);
@@ -288,6 +293,8 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameOutputs& outputs, const 
         s->passes = s->run.buffer->passes_done;
         // (a pass abandoned while its photons were traced ends the section without asking `stop`)
         if (!start.finished && cancel.load() && s->passes < passes) by_interrupt = true;
+        // With ranks: an interrupt seen by any rank is one for all (they stopped after the same pass).
+        if (ex) by_interrupt = ex->max(Channel::Passes, by_interrupt ? 1 : 0) != 0;
         if (by_interrupt) {
             // Every pass is a picture: the frames are written from the passes done, and the
             // state is saved so that --resume continues from here.
