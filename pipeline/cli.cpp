@@ -162,6 +162,9 @@ int render(RunOptions o, const std::vector<std::string>& argv) {
     std::signal(SIGINT, on_signal);
     std::signal(SIGTERM, on_signal);
     RankExchange* ex = g_ranks.ex;
+    // Ctrl-C to Open MPI's mpirun cannot reach the ranks (it stops them with SIGTERM, as when a
+    // rank died, and exits 1); SIGUSR1 it forwards: under MPI that is the interrupt of Ctrl-C.
+    if (ex) std::signal(SIGUSR1, on_signal);
     const bool root = g_ranks.root();
     if (ex) {
         if (o.ranks > 0 && o.ranks != ex->ranks())
