@@ -340,8 +340,10 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameOutputs& outputs, const 
         FrameImage& img = *out;
         if (s.from_disk) {
             // Checked again as it is read: the file may have changed since --resume judged it.
-            img.rgb = read_verified_exr(outputs.exr_frame_path(job_in.frame),
-                                        resume_expectation(ctx.width, ctx.height, job.fingerprint, job_in.frame));
+            // With ranks, only rank 0 (which judged it) reads it: the image is whole there.
+            if (root)
+                img.rgb = read_verified_exr(outputs.exr_frame_path(job_in.frame),
+                                            resume_expectation(ctx.width, ctx.height, job.fingerprint, job_in.frame));
         } else {
             if (!s.assembler) {
                 s.assembler.emplace(*s.run.buffer, mode, ctx.pulse_buckets);

@@ -70,25 +70,27 @@ std::vector<std::string> render_args(const std::string& scene, const std::string
     return a;
 }
 
-}  // namespace
-
-// Interrupted on 2 ranks (SIGUSR1 to mpirun, which forwards it to every rank: the ranks agree
-// to stop after the same pass), with a checkpoint after every pass; resumed once in one process
-// and once on 3 ranks: both equal the uninterrupted one-process render. A medium too: the
-// volume radius travels in the file.
-TEST_F(DistributedResume, InterruptedOnTwoRanksResumesInOneProcessAndOnThreeRanksExactly) {
-    const std::string scene = "cornell_haze.json", passes = "40", photons = "5000";
-    ProgramResult one = run_program(render_args(scene, passes, {"--exr-dir", dir.file("one")}, photons));
+// Renders in one process, then on 2 ranks interrupted (SIGUSR1 to mpirun, which forwards it to
+// every rank: the ranks agree to stop after the same pass) once checkpoint `ckpt` exists, with a
+// checkpoint after every pass; then resumes a copy on each of `resume_on` rank counts (1: one
+// process) and expects every EXR equal to the uninterrupted one-process render.
+void interrupt_then_resume(const ScratchDir& dir, const std::string& scene, const std::string& passes,
+                           const std::string& photons, const std::vector<std::string>& extra, const std::string& ckpt,
+                           const std::vector<int>& resume_on) {
+    auto args = [&](std::vector<std::string> more) {
+        more.insert(more.end(), extra.begin(), extra.end());
+        return render_args(scene, passes, more, photons);
+    };
+    ProgramResult one = run_program(args({"--exr-dir", dir.file("one")}));
     ASSERT_EQ(one.exit_code, 0) << one.err;
 
     const std::string cut = dir.file("cut");
-    auto job = std::async(std::launch::async, [&] {
-        return run_ranks(2, render_args(scene, passes, {"--exr-dir", cut, "--checkpoint-every", "0"}, photons), "", 120);
-    });
+    auto job = std::async(std::launch::async,
+                          [&] { return run_ranks(2, args({"--exr-dir", cut, "--checkpoint-every", "0"}), "", 120); });
     pid_t launcher = 0;
-    for (int tries = 0; tries < 1200; ++tries) {  // once the first checkpoint is there
+    for (int tries = 0; tries < 1200; ++tries) {  // once the checkpoint is there
         std::this_thread::sleep_for(std::chrono::milliseconds(25));
-        if (std::filesystem::exists(cut + "/section_0000.ckpt") && (launcher = launcher_process(cut))) break;
+        if (std::filesystem::exists(cut + "/" + ckpt) && (launcher = launcher_process(cut))) break;
     }
     ASSERT_NE(launcher, 0) << "no checkpoint appeared";
     ::kill(launcher, SIGUSR1);
@@ -96,21 +98,35 @@ TEST_F(DistributedResume, InterruptedOnTwoRanksResumesInOneProcessAndOnThreeRank
     ASSERT_FALSE(interrupted.timed_out) << interrupted.err;
     EXPECT_EQ(interrupted.exit_code, 130) << interrupted.err;
     ASSERT_NE(interrupted.err.find("state saved in"), std::string::npos) << interrupted.err;
-    ASSERT_TRUE(std::filesystem::exists(cut + "/section_0000.ckpt"));
+    ASSERT_TRUE(std::filesystem::exists(cut + "/" + ckpt));
 
-    for (int ranks : {1, 3}) {
+    for (int ranks : resume_on) {
         const std::string again = dir.file("again" + std::to_string(ranks));
         std::filesystem::copy(cut, again);
-        std::vector<std::string> args = render_args(scene, passes, {"--exr-dir", again, "--resume"}, photons);
-        ProgramResult r = ranks == 1 ? run_program(args) : run_ranks(ranks, args);
+        std::vector<std::string> a = args({"--exr-dir", again, "--resume"});
+        ProgramResult r = ranks == 1 ? run_program(a) : run_ranks(ranks, a);
         ASSERT_EQ(r.exit_code, 0) << r.err;
         std::smatch m;
         ASSERT_TRUE(std::regex_search(r.err, m, std::regex("from its checkpoint at pass ([0-9]+)"))) << r.err;
         EXPECT_GT(std::stoi(m[1]), 0);
         EXPECT_LT(std::stoi(m[1]), std::stoi(passes)) << "the interrupt came too late to test anything";
         EXPECT_EQ(differing_values(dir.file("one"), again, 6), 0u) << "resumed on " << ranks << " rank(s)";
-        EXPECT_FALSE(std::filesystem::exists(again + "/section_0000.ckpt")) << "a finished render keeps no checkpoint";
+        EXPECT_FALSE(std::filesystem::exists(again + "/" + ckpt)) << "a finished render keeps no checkpoint";
     }
+}
+
+}  // namespace
+
+// One section, in a medium (the volume radius travels in the file): resumed in one process and
+// on 3 ranks.
+TEST_F(DistributedResume, InterruptedOnTwoRanksResumesInOneProcessAndOnThreeRanksExactly) {
+    interrupt_then_resume(dir, "cornell_haze.json", "40", "5000", {}, "section_0000.ckpt", {1, 3});
+}
+
+// Two sections, interrupted in the second: on 3 ranks the first comes back from its EXR files
+// (read by rank 0 alone) and the second from its checkpoint.
+TEST_F(DistributedResume, InterruptedInTheSecondSectionResumesOnThreeRanksExactly) {
+    interrupt_then_resume(dir, "cornell_box.json", "30", "20000", {"--sections", "2"}, "section_0001.ckpt", {3});
 }
 
 // --time-limit on 2 ranks: rank 0's clock decides, every rank stops after the same pass, and
