@@ -6,6 +6,7 @@
 #include <regex>
 
 #include "foundation/errors.h"
+#include "pipeline/distributed/section_state_on_ranks.h"
 
 namespace sl {
 namespace fs = std::filesystem;
@@ -37,9 +38,10 @@ void remove_stale_checkpoint_temps(const std::string& dir) {
     for (const auto& p : stale) fs::remove(p, ec);
 }
 
-Checkpointer::Checkpointer(CheckpointSettings settings, SectionStateId id)
-    : settings_(std::move(settings)), id_(std::move(id)), last_save_(Clock::now()), interval_(settings_.every) {
-    if (!enabled()) return;
+Checkpointer::Checkpointer(CheckpointSettings settings, SectionStateId id, RankExchange* ex)
+    : settings_(std::move(settings)), id_(std::move(id)), ex_(ex), writer_(!ex || ex->rank() == 0),
+      last_save_(Clock::now()), interval_(settings_.every) {
+    if (!enabled() || !writer_) return;
     std::error_code ec;
     fs::create_directories(settings_.dir, ec);
     if (!fs::is_directory(settings_.dir))
@@ -62,7 +64,9 @@ void Checkpointer::after_pass(const SectionBuffer& buffer) {
         last_save_ = Clock::now();
         if (settings_.every > 0) return;
     }
-    if (std::chrono::duration<double>(Clock::now() - last_save_).count() >= interval_) save(buffer, false);
+    bool due = std::chrono::duration<double>(Clock::now() - last_save_).count() >= interval_;
+    if (ex_) due = ex_->broadcast(Channel::Passes, due);  // rank 0's clock, for every rank
+    if (due) save(buffer, false);
 }
 
 std::string Checkpointer::save(const SectionBuffer& buffer, bool finished) {
@@ -74,7 +78,8 @@ std::string Checkpointer::save(const SectionBuffer& buffer, bool finished) {
         if (section == last_section_ && buffer.passes_done == last_passes_ && !finished) return path;
     }
     auto t0 = Clock::now();
-    uint64_t bytes = save_section_state(path, buffer, id_for(section), finished);
+    uint64_t bytes = ex_ ? save_section_state_on_ranks(*ex_, path, buffer, id_for(section), finished)
+                         : save_section_state(path, buffer, id_for(section), finished);
     double took = std::chrono::duration<double>(Clock::now() - t0).count();
     std::lock_guard lock(mutex_);
     last_section_ = section;
@@ -90,12 +95,13 @@ std::string Checkpointer::save(const SectionBuffer& buffer, bool finished) {
 }
 
 void Checkpointer::remove(int section) {
-    if (!enabled()) return;
+    if (!enabled() || !writer_) return;
     std::error_code ec;
     fs::remove(checkpoint_path(settings_.dir, section), ec);
 }
 
 void Checkpointer::remove_all() {
+    if (!writer_) return;
     for (const std::string& p : checkpoint_files(settings_.dir)) {
         std::error_code ec;
         fs::remove(p, ec);

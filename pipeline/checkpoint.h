@@ -34,7 +34,10 @@ void remove_stale_checkpoint_temps(const std::string& dir);
 
 class Checkpointer {
 public:
-    Checkpointer(CheckpointSettings settings, SectionStateId id);
+    // With several ranks (`ex`), every rank holds one and makes the same calls; only rank 0
+    // makes the directory and writes the files, from every rank's pixels, and its clock decides
+    // when a checkpoint is due.
+    Checkpointer(CheckpointSettings settings, SectionStateId id, RankExchange* ex = nullptr);
     bool enabled() const { return !settings_.dir.empty(); }
     const CheckpointSettings& settings() const { return settings_; }
     SectionStateId id_for(int section) const;
@@ -57,6 +60,8 @@ private:
     using Clock = std::chrono::steady_clock;
     CheckpointSettings settings_;
     SectionStateId id_;
+    RankExchange* ex_ = nullptr;
+    bool writer_ = true;  // rank 0, or one process
     mutable std::mutex mutex_;
     Clock::time_point last_save_;
     int last_section_ = -1, last_passes_ = -1;

@@ -19,6 +19,7 @@
 #include "foundation/errors.h"
 #include "pipeline/distributed/mpi_launch.h"
 #include "pipeline/distributed/rank_start.h"
+#include "pipeline/distributed/resume_on_ranks.h"
 #include "config/text_util.h"
 #include "pipeline/exposure.h"
 #include "config/duration.h"
@@ -138,6 +139,9 @@ int render(RunOptions o, const std::vector<std::string>& argv) {
     std::signal(SIGINT, on_signal);
     std::signal(SIGTERM, on_signal);
     RankExchange* ex = g_ranks.ex;
+    // Ctrl-C to Open MPI's mpirun cannot reach the ranks (it stops them with SIGTERM, as when a
+    // rank died, and exits 1); SIGUSR1 it forwards: under MPI that is the interrupt of Ctrl-C.
+    if (ex) std::signal(SIGUSR1, on_signal);
     const bool root = g_ranks.root();
     check_rank_options(o, ex);
     SceneDesc scene = load_scene(o);
@@ -157,22 +161,22 @@ int render(RunOptions o, const std::vector<std::string>& argv) {
 
     require_an_output(o);  // after every check of the input, before any work
 
-    // Checkpoints: in --checkpoint DIR, or else in --exr-dir, where --resume looks anyway. Not
-    // with several ranks yet (a rank holds a share of the pixels; docs/distributed.md).
+    // Checkpoints: in --checkpoint DIR, or else in --exr-dir, where --resume looks anyway. With
+    // several ranks, rank 0 alone reads and writes them (docs/distributed.md).
     const std::string again = resume_command(argv);
-    const CheckpointSettings checkpoints = checkpoint_settings(o, plan, ex != nullptr);
+    const CheckpointSettings checkpoints = checkpoint_settings(o, plan);
     const SectionStateId state_id = section_state_id(scene, ctx, plan, fingerprint);
     const std::vector<SectionLayout> layouts = plan_sections(ctx, plan, o.strategy);
     std::vector<SectionStart> starts;
-    if (o.resume)
+    if (o.resume && !ex)
         starts = checkpoints_to_resume(checkpoints.dir, state_id, layouts, ctx.has_ambient());
-    else if (!ex)
+    else if (!o.resume && root)
         refuse_existing_checkpoints(checkpoints.dir, again);
 
     const OutputSettings out = output_settings(o, scene, ctx, fingerprint);
-    check_preview_path(o.preview_path);  // a preview that cannot be written must not stop a render
+    if (root) check_preview_path(o.preview_path);  // by rank 0, its writer: a preview that cannot be written must not stop a render
     g_setting_up = false;  // from here on a signal means: deliver what you have
-    Checkpointer checkpointer(checkpoints, state_id);  // makes the directory: checked before any output
+    Checkpointer checkpointer(checkpoints, state_id, ex);  // makes the directory: checked before any output
     // Only rank 0 writes; the others assemble their pixels and send them to it.
     FrameOutputs outputs(root ? out : OutputSettings{});  // every output is checked before rendering starts
 
@@ -184,9 +188,22 @@ int render(RunOptions o, const std::vector<std::string>& argv) {
     job.exposure_rule.follow = o.exposure_follow;
     job.fingerprint = fingerprint;
     job.exr_files = &outputs;
-    if (o.resume && !o.exr_dir.empty()) {
-        job.on_disk = sections_on_disk(outputs, layouts, fingerprint, ctx.width, ctx.height);
-        drop_interrupted_sections(outputs, layouts, job.on_disk);
+    auto frames_on_disk = [&](std::vector<bool>& on_disk) {
+        if (!o.resume || o.exr_dir.empty()) return;
+        on_disk = sections_on_disk(outputs, layouts, fingerprint, ctx.width, ctx.height);
+        drop_interrupted_sections(outputs, layouts, on_disk);
+    };
+    if (o.resume && ex) {  // rank 0 judges, every rank gets its answer
+        const int status = share_resume_plan(
+            *ex,
+            [&](std::vector<SectionStart>& st, std::vector<bool>& on_disk) {
+                st = checkpoints_to_resume(checkpoints.dir, state_id, layouts, ctx.has_ambient());
+                frames_on_disk(on_disk);
+            },
+            starts, job.on_disk);
+        if (status != 0) return status;
+    } else {
+        frames_on_disk(job.on_disk);
     }
     job.starts = starts;
     if (checkpointer.enabled()) job.checkpointer = &checkpointer;
@@ -196,8 +213,7 @@ int render(RunOptions o, const std::vector<std::string>& argv) {
                      !(s < static_cast<int>(starts.size()) && starts[s].finished);
     TimeBudget budget = o.time_limit ? TimeBudget(*o.time_limit, t0, to_render) : TimeBudget();
     if (budget.limited()) job.budget = &budget;
-    PreviewSheet preview(ex ? std::string() : o.preview_path, scene.emission.mode, ctx.pulse_buckets, ctx.width,
-                         ctx.height);
+    PreviewSheet preview(o.preview_path, scene.emission.mode, ctx.pulse_buckets, ctx.width, ctx.height, ex);
     if (preview.enabled()) job.preview = &preview;
     if (ex) {  // from here on every rank renders, or none does
         const int status = agree_to_start(*ex, 0, "");

@@ -5,20 +5,23 @@
 #include <exception>
 #include <vector>
 
+#include "pipeline/distributed/image_gather.h"
 #include "stages/output/png_io.h"
 #include "stages/output/tone_map.h"
 #include "stages/render/frame_assembly.h"
 
 namespace sl {
 
-PreviewSheet::PreviewSheet(std::string path, EmissionMode mode, int pulse_buckets, int width, int height)
-    : path_(std::move(path)), mode_(mode), pulse_buckets_(pulse_buckets), width_(width), height_(height) {}
+PreviewSheet::PreviewSheet(std::string path, EmissionMode mode, int pulse_buckets, int width, int height,
+                           RankExchange* ex)
+    : path_(std::move(path)), ex_(ex), mode_(mode), pulse_buckets_(pulse_buckets), width_(width), height_(height) {}
 
 void PreviewSheet::after_pass(const SectionBuffer& buffer, std::optional<double> exposure) {
     if (!enabled()) return;
     auto now = std::chrono::steady_clock::now();
-    if (buffer.layout.index == last_section_ && std::chrono::duration<double>(now - last_).count() < interval_) return;
-    write(buffer, exposure);
+    bool due = buffer.layout.index != last_section_ || std::chrono::duration<double>(now - last_).count() >= interval_;
+    if (ex_) due = ex_->broadcast(Channel::Passes, due);  // rank 0's clock decides for every rank
+    if (due) write(buffer, exposure);
 }
 
 void PreviewSheet::write(const SectionBuffer& buffer, std::optional<double> exposure) {
@@ -35,6 +38,8 @@ void PreviewSheet::write(const SectionBuffer& buffer, std::optional<double> expo
     for (int k = 0; k < n; ++k) {
         const int f = l.first_frame + (n == 1 ? 0 : k * (l.frames() - 1) / (n - 1));
         frames.frame(f, rgb);
+        if (ex_) gather_image(*ex_, static_cast<size_t>(width_) * height_, rgb, Channel::Passes);
+        if (rgb.empty() || failed_) continue;  // not rank 0: its pixels are sent, nothing more
         const int x0 = (k % cols) * (tw + gap), y0 = (k / cols) * (th + gap);
         for (int y = 0; y < th; ++y)
             for (int x = 0; x < tw; ++x)
@@ -47,13 +52,17 @@ void PreviewSheet::write(const SectionBuffer& buffer, std::optional<double> expo
                         static_cast<float>(sum / (shrink * shrink));
                 }
     }
+    if (failed_ || (ex_ && ex_->rank() != 0)) {
+        last_section_ = l.index;
+        return;
+    }
     std::vector<uint8_t> srgb(sheet.size());
     tone_map_srgb8(sheet.data(), sw, sh, exposure.value_or(exposure_from_steady(sheet.data(), sw, sh)), srgb.data());
     try {
         write_png(path_, sw, sh, srgb.data());  // through a temporary sibling and a rename
     } catch (const std::exception& e) {  // a look at the render is not worth the render
         std::fprintf(stderr, "warning: --preview: %s\n", e.what());
-        path_.clear();
+        failed_ = true;
         return;
     }
     ++writes_;

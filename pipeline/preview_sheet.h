@@ -15,7 +15,10 @@ namespace sl {
 
 class PreviewSheet {
 public:
-    PreviewSheet(std::string path, EmissionMode mode, int pulse_buckets, int width, int height);
+    // With several ranks (`ex`) every rank makes the same calls: the frames' pixels come
+    // together on rank 0, which alone writes the sheet and whose clock says when it is due.
+    PreviewSheet(std::string path, EmissionMode mode, int pulse_buckets, int width, int height,
+                 RankExchange* ex = nullptr);
     bool enabled() const { return !path_.empty(); }
 
     // After a pass: writes the sheet if it is due (first pass of a section, then every interval).
@@ -25,6 +28,8 @@ public:
 
 private:
     std::string path_;
+    RankExchange* ex_ = nullptr;
+    bool failed_ = false;  // rank 0 could not write it: no more tries (the ranks still take part)
     EmissionMode mode_;
     int pulse_buckets_, width_, height_;
     std::chrono::steady_clock::time_point last_{};

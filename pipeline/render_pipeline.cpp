@@ -12,6 +12,7 @@
 #include <optional>
 
 #include "pipeline/distributed/image_gather.h"
+#include "pipeline/distributed/section_state_on_ranks.h"
 #include "pipeline/exposure.h"
 #include "pipeline/exposure_preview.h"
 #include "pipeline/resume.h"
@@ -132,7 +133,8 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameSink& outputs, const Pro
     } else if (exposure_pending && (plan.sections > 1 || start_of(0).finished)) {
         auto t0 = Clock::now();
         // Stopped by an interrupt or, with --time-limit, after a sixteenth of the budget.
-        auto stop = [&](int done) { return cancel.load() || (job.budget && job.budget->preview_over(done)); };
+        // With ranks, rank 0's clock (the ranks agree on stopping after each pass).
+        auto stop = [&](int done) { return cancel.load() || (job.budget && root && job.budget->preview_over(done)); };
         const ExposurePreview e = exposure_from_preview(ctx, job.exposure_rule, stop);
         preview_passes = e.passes;
         stats.counts.add(e.counts);
@@ -175,7 +177,9 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameSink& outputs, const Pro
         const SectionStart start = start_of(index);
         std::unique_ptr<SectionBuffer> buffer;
         if (start.from_checkpoint) {
-            buffer = load_section_state(start.path, job.checkpointer->id_for(index), s->layout, ctx.has_ambient());
+            buffer = ex ? load_section_state_on_ranks(*ex, start.path, job.checkpointer->id_for(index), s->layout,
+                                                      ctx.has_ambient(), ctx.pixels())
+                        : load_section_state(start.path, job.checkpointer->id_for(index), s->layout, ctx.has_ambient());
             ++stats.sections_resumed;
         } else {
             buffer = ex ? std::make_unique<SectionBuffer>(PixelShare{ex->rank(), ex->ranks(), ctx.pixels()}, s->layout,
@@ -198,13 +202,16 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameSink& outputs, const Pro
             };
             auto stop = [&] {
                 if (cancel.load()) return by_interrupt = true;
-                return job.budget != nullptr && job.budget->stop_before_pass(live->passes_done);
+                // With ranks, rank 0's budget decides (the ranks agree on stopping after each pass).
+                return job.budget != nullptr && root && job.budget->stop_before_pass(live->passes_done);
             };
             s->run = render_section(ctx, s->layout, passes, photons_per_pass, on_pass, stop, std::move(buffer), &cancel);
         }
         s->passes = s->run.buffer->passes_done;
         // (a pass abandoned while its photons were traced ends the section without asking `stop`)
         if (!start.finished && cancel.load() && s->passes < passes) by_interrupt = true;
+        // With ranks: an interrupt seen by any rank is one for all (they stopped after the same pass).
+        if (ex) by_interrupt = ex->max(Channel::Passes, by_interrupt ? 1 : 0) != 0;
         if (by_interrupt) {
             // Every pass is a picture: the frames are written from the passes done, and the
             // state is saved so that --resume continues from here.
@@ -253,8 +260,10 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameSink& outputs, const Pro
         FrameImage& img = *out;
         if (s.from_disk) {
             // Checked again as it is read: the file may have changed since --resume judged it.
-            img.rgb = read_verified_exr(job.exr_files->exr_frame_path(job_in.frame),
-                                        resume_expectation(ctx.width, ctx.height, job.fingerprint, job_in.frame));
+            // With ranks, only rank 0 (which judged it) reads it: the image is whole there.
+            if (root)
+                img.rgb = read_verified_exr(job.exr_files->exr_frame_path(job_in.frame),
+                                            resume_expectation(ctx.width, ctx.height, job.fingerprint, job_in.frame));
         } else {
             if (!s.assembler) {
                 s.assembler.emplace(*s.run.buffer, mode, ctx.pulse_buckets);

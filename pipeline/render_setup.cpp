@@ -14,12 +14,6 @@ void check_rank_options(RunOptions& o, RankExchange* ex) {
         if (o.ranks > 0 && o.ranks != ex->ranks())
             throw InputError("command line: --ranks " + std::to_string(o.ranks) + ": this render runs on " +
                              std::to_string(ex->ranks()) + " MPI ranks");
-        // Resuming needs the checkpoint of every rank's pixels: not yet.
-        if (o.resume) throw InputError("command line: --resume is not supported yet when several MPI ranks render");
-        // Each needs every rank's pixels or an agreed pass count: not yet either.
-        if (!o.checkpoint_dir.empty() || o.time_limit || !o.preview_path.empty())
-            throw InputError("command line: --checkpoint, --time-limit and --preview are not supported yet when several "
-                             "MPI ranks render");
         o.ranks = ex->ranks();
     } else if (o.ranks > 1) {
         throw InputError("command line: --ranks " + std::to_string(o.ranks) +
@@ -59,12 +53,12 @@ OutputSettings output_settings(const RunOptions& o, const SceneDesc& scene, cons
     return out;
 }
 
-CheckpointSettings checkpoint_settings(const RunOptions& o, const MemoryPlan& plan, bool ranks) {
+// In --checkpoint DIR, or else in --exr-dir, where --resume looks anyway. With several ranks,
+// rank 0 alone reads and writes them (docs/distributed.md).
+CheckpointSettings checkpoint_settings(const RunOptions& o, const MemoryPlan& plan) {
     CheckpointSettings checkpoints;
-    if (!ranks) {
-        checkpoints.dir = !o.checkpoint_dir.empty() ? o.checkpoint_dir : o.exr_dir;
-        checkpoints.flag = !o.checkpoint_dir.empty() ? "--checkpoint" : "--exr-dir";
-    }
+    checkpoints.dir = !o.checkpoint_dir.empty() ? o.checkpoint_dir : o.exr_dir;
+    checkpoints.flag = !o.checkpoint_dir.empty() ? "--checkpoint" : "--exr-dir";
     checkpoints.every = o.checkpoint_every.value_or(kDefaultCheckpointEvery);
     checkpoints.keep_finished = o.exr_dir.empty() && plan.sections > 1;
     return checkpoints;

@@ -27,7 +27,7 @@ OutputSettings output_settings(const RunOptions& o, const SceneDesc& scene, cons
                                const std::string& fingerprint);
 
 // In --checkpoint DIR, or else in --exr-dir (where --resume looks anyway); none with ranks.
-CheckpointSettings checkpoint_settings(const RunOptions& o, const MemoryPlan& plan, bool ranks);
+CheckpointSettings checkpoint_settings(const RunOptions& o, const MemoryPlan& plan);
 
 SectionStateId section_state_id(const SceneDesc& scene, const RenderContext& ctx, const MemoryPlan& plan,
                                 const std::string& fingerprint);

@@ -13,6 +13,10 @@ trap 'rm -rf "$out"' EXIT
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_btl=self,vader
 # A rank waiting in a collective yields its core instead of spinning: this machine is shared.
 export OMPI_MCA_mpi_yield_when_idle=1
+# One machine, shared memory: the ob1 layer, without the UCX probe (no such devices here), which
+# costs each rank about 0.3 s of MPI_Init. On an InfiniBand cluster UCX is the right choice.
+# SLOWLIGHT_BENCH_UCX=1 keeps Open MPI's default, to measure the probe itself.
+if [[ "${SLOWLIGHT_BENCH_UCX:-0}" != 1 ]]; then export OMPI_MCA_pml=ob1 OMPI_MCA_osc=^ucx; fi
 render=(render samples/cornell_box.json --width 192 --height 192 --frames 48 --passes 24 --photons 200000
         --no-progress --exr-dir "$out/exr" "$@")
 wall() { /usr/bin/time -f %e -o "$out/t" "$@" >/dev/null 2>"$out/err" || { cat "$out/err" >&2; exit 1; }; cat "$out/t"; }

@@ -6,10 +6,10 @@
 
 namespace sl {
 
-void gather_image(RankExchange& ex, size_t pixels, std::vector<float>& rgb) {
+void gather_image(RankExchange& ex, size_t pixels, std::vector<float>& rgb, Channel channel) {
     std::vector<char> all;
     std::vector<uint64_t> counts;
-    ex.gather(Channel::Frames, rgb.data(), rgb.size() * sizeof(float), all, counts);
+    ex.gather(channel, rgb.data(), rgb.size() * sizeof(float), all, counts);
     if (ex.rank() != 0) {
         rgb.clear();
         return;

@@ -7,8 +7,9 @@
 namespace sl {
 
 // `rgb`: this rank's own pixels (3 floats each, in local order). Afterwards rank 0's `rgb` is the
-// whole image of `pixels` pixels in image order; the other ranks' is empty.
-void gather_image(RankExchange& ex, size_t pixels, std::vector<float>& rgb);
+// whole image of `pixels` pixels in image order; the other ranks' is empty. The channel: Frames
+// on the way to the outputs, Passes from within a section's passes (--preview).
+void gather_image(RankExchange& ex, size_t pixels, std::vector<float>& rgb, Channel channel = Channel::Frames);
 
 // Every rank's values, concatenated in rank order, on rank 0 (empty elsewhere).
 void gather_values(RankExchange& ex, std::vector<float>& values);

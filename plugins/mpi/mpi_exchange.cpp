@@ -101,6 +101,28 @@ public:
         count(ch, rank_ == 0 ? 8 : 0, rank_ == 0 ? 0 : 8);
         return v;
     }
+    void broadcast(sl::Channel ch, std::vector<char>& bytes) override {
+        MPI_Comm c = comm(ch);
+        uint64_t n = bytes.size();
+        check(MPI_Bcast(&n, 1, MPI_UINT64_T, 0, c), "MPI_Bcast");
+        bytes.resize(n);
+        check(MPI_Bcast(bytes.data(), to_int(n), MPI_BYTE, 0, c), "MPI_Bcast");
+        count(ch, rank_ == 0 ? n * static_cast<uint64_t>(size_ - 1) : 0, rank_ == 0 ? 0 : n);
+    }
+    void scatter(sl::Channel ch, const std::vector<char>& all, const std::vector<uint64_t>& counts,
+                 std::vector<char>& mine) override {
+        MPI_Comm c = comm(ch);
+        uint64_t n = 0;
+        check(MPI_Scatter(counts.data(), 1, MPI_UINT64_T, &n, 1, MPI_UINT64_T, 0, c), "MPI_Scatter");
+        mine.resize(n);
+        std::vector<int> sizes, at;
+        uint64_t total = 0;
+        if (rank_ == 0) total = displacements(counts, sizes, at);
+        check(MPI_Scatterv(all.data(), sizes.data(), at.data(), MPI_BYTE, mine.data(), to_int(n), MPI_BYTE, 0, c),
+              "MPI_Scatterv");
+        if (rank_ == 0) count(ch, total - n, 0);
+        else count(ch, 0, n);
+    }
     [[noreturn]] void abort(int code) override {
         std::fflush(stderr);
         MPI_Abort(MPI_COMM_WORLD, code);

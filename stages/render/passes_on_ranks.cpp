@@ -34,10 +34,13 @@ void run_passes_on_ranks(const RenderContext& ctx, const SectionLayout& layout, 
         buffer.max_radius = v[0];
         return v[1] == 0;
     };
-    if (passes <= 0 || !agree()) return;
-    trace(0);
+    // A section resumed from its checkpoint continues with its next pass: the random streams
+    // are the pass index's, so the passes are those an uninterrupted render makes.
+    const int first = buffer.passes_done;
+    if (first >= passes || !agree()) return;
+    trace(first);
     tbb::task_group next;
-    for (int pass = 0; pass < passes; ++pass) {
+    for (int pass = first; pass < passes; ++pass) {
         auto t0 = std::chrono::steady_clock::now();
         photons.finish(ctx, 2 * buffer.max_radius, counters.photons, volume);
         times.grid += seconds_since(t0);

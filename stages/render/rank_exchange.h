@@ -64,6 +64,12 @@ public:
     // Rank 0's value, on every rank.
     virtual bool broadcast(Channel c, bool v) = 0;
     virtual double broadcast(Channel c, double v) = 0;
+    // Rank 0's bytes, on every rank (resized to them).
+    virtual void broadcast(Channel c, std::vector<char>& bytes) = 0;
+    // Rank 0's `all`, cut into counts[r] bytes for rank r (counts and `all` are read on rank 0
+    // only): each rank's part in `mine`.
+    virtual void scatter(Channel c, const std::vector<char>& all, const std::vector<uint64_t>& counts,
+                         std::vector<char>& mine) = 0;
     // Ends every rank of the job at once (after this rank printed why).
     [[noreturn]] virtual void abort(int code) = 0;
 

@@ -44,7 +44,7 @@ SectionRun render_section(const RenderContext& ctx, const SectionLayout& layout,
     namespace flow = tbb::flow;
     SectionRun run;
     SectionCounters counters;
-    RankExchange* ex = ctx.exchange;  // resumed sections come only to a single process
+    RankExchange* ex = ctx.exchange;
     run.buffer = resume_from ? std::move(resume_from)
                  : ex        ? std::make_unique<SectionBuffer>(PixelShare{ex->rank(), ex->ranks(), ctx.pixels()}, layout,
                                                                ctx.initial_radius, ctx.has_ambient())

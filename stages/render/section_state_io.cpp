@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <functional>
 #include <utility>
 #include <vector>
 
@@ -156,10 +157,11 @@ void walk_payload(size_t pixels, bool ambient, Io&& io) {
 
 }  // namespace
 
-uint64_t save_section_state(const std::string& path, const SectionBuffer& b, const SectionStateId& id, bool finished) {
-    const size_t pixels = b.radius2.size();
-    const bool ambient = !b.ambient.empty();
-    const int slots = b.slots;
+uint64_t save_section_state_from(const std::string& path, const SectionStateId& id, const SectionStateScalars& v,
+                                 bool finished, const SectionStateFill& fill) {
+    const size_t pixels = v.pixels;
+    const bool ambient = v.ambient;
+    const int slots = v.slots;
     const std::string temp = temp_name(path);
     File f(::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644));
     if (f.fd() < 0) throw RuntimeFailure("checkpoint " + path + ": cannot create: " + std::strerror(errno));
@@ -169,19 +171,8 @@ uint64_t save_section_state(const std::string& path, const SectionBuffer& b, con
         Checksum sum;
         std::vector<char> stage;
         walk_payload(pixels, ambient, [&](int array, size_t p0, size_t p1) {
-            const size_t n = p1 - p0;
-            if (array == 0 || array == 1) {
-                const double* src = (array == 0 ? b.radius2.data() : b.photon_count.data()) + p0;
-                stage.assign(reinterpret_cast<const char*>(src), reinterpret_cast<const char*>(src + n));
-            } else if (array == 2) {
-                const float* src = b.ambient.data() + 3 * p0;
-                stage.assign(reinterpret_cast<const char*>(src), reinterpret_cast<const char*>(src + 3 * n));
-            } else {
-                stage.resize(n * slots * 3 * sizeof(float));
-                float* dst = reinterpret_cast<float*>(stage.data());
-                for (size_t p = p0; p < p1; ++p)
-                    for (int s = 0; s < slots; ++s, dst += 3) std::memcpy(dst, b.slot(p, s), 3 * sizeof(float));
-            }
+            stage.resize((p1 - p0) * section_state_pixel_bytes(array, slots));
+            fill(array, p0, p1, stage.data());
             sum.update(stage.data(), stage.size());
             write_all(f.fd(), stage.data(), stage.size(), path);
         });
@@ -192,10 +183,10 @@ uint64_t save_section_state(const std::string& path, const SectionBuffer& b, con
         put_text(h.version, id.program_version);
         put_text(h.fingerprint, id.fingerprint);
         h.section = id.section, h.sections = id.sections;
-        h.passes_done = b.passes_done, h.passes_target = id.passes_target, h.finished = finished;
-        h.width = id.width, h.height = id.height, h.slots = slots, h.frames = b.layout.frames();
+        h.passes_done = v.passes_done, h.passes_target = id.passes_target, h.finished = finished;
+        h.width = id.width, h.height = id.height, h.slots = slots, h.frames = v.frames;
         h.ambient = ambient;
-        h.max_radius = b.max_radius, h.volume_radius2 = b.volume_radius2;
+        h.max_radius = v.max_radius, h.volume_radius2 = v.volume_radius2;
         h.payload_bytes = payload_bytes_of(pixels, slots, ambient);
         h.payload_checksum = sum.value();
         std::memcpy(head, &h, sizeof h);
@@ -219,6 +210,59 @@ uint64_t save_section_state(const std::string& path, const SectionBuffer& b, con
         ::unlink(temp.c_str());
         throw;
     }
+}
+
+SectionStateScalars section_state_scalars(const SectionBuffer& b) {
+    SectionStateScalars v;
+    v.pixels = b.radius2.size();
+    v.slots = b.slots;
+    v.frames = b.layout.frames();
+    v.ambient = !b.ambient.empty();
+    v.passes_done = b.passes_done;
+    v.max_radius = b.max_radius;
+    v.volume_radius2 = b.volume_radius2;
+    return v;
+}
+
+void copy_section_state_chunk(const SectionBuffer& b, int array, size_t p0, size_t p1, char* out) {
+    const size_t n = p1 - p0;
+    if (array == 0 || array == 1) {
+        const double* src = (array == 0 ? b.radius2.data() : b.photon_count.data()) + p0;
+        std::memcpy(out, src, n * sizeof(double));
+    } else if (array == 2) {
+        std::memcpy(out, b.ambient.data() + 3 * p0, n * 3 * sizeof(float));
+    } else {
+        float* dst = reinterpret_cast<float*>(out);
+        for (size_t p = p0; p < p1; ++p)
+            for (int s = 0; s < b.slots; ++s, dst += 3) std::memcpy(dst, b.slot(p, s), 3 * sizeof(float));
+    }
+}
+
+void take_section_state_chunk(SectionBuffer& b, int array, size_t p0, size_t p1, const char* src) {
+    const size_t n = p1 - p0;
+    if (array == 0) std::memcpy(b.radius2.data() + p0, src, n * sizeof(double));
+    if (array == 1) std::memcpy(b.photon_count.data() + p0, src, n * sizeof(double));
+    if (array == 2) std::memcpy(b.ambient.data() + 3 * p0, src, n * 3 * sizeof(float));
+    if (array == 3) {
+        const float* in = reinterpret_cast<const float*>(src);
+        for (size_t p = p0; p < p1; ++p)
+            for (int s = 0; s < b.slots; ++s, in += 3) std::memcpy(b.slot(p, s), in, 3 * sizeof(float));
+    }
+}
+
+uint64_t save_section_state(const std::string& path, const SectionBuffer& b, const SectionStateId& id, bool finished) {
+    return save_section_state_from(path, id, section_state_scalars(b), finished,
+                                   [&](int array, size_t p0, size_t p1, char* out) {
+                                       copy_section_state_chunk(b, array, p0, p1, out);
+                                   });
+}
+
+size_t section_state_pixel_bytes(int array, int slots) {
+    return array < 2 ? sizeof(double) : array == 2 ? 3 * sizeof(float) : static_cast<size_t>(slots) * 3 * sizeof(float);
+}
+
+void for_each_section_state_chunk(size_t pixels, bool ambient, const std::function<void(int, size_t, size_t)>& fn) {
+    walk_payload(pixels, ambient, fn);
 }
 
 namespace {
@@ -301,8 +345,7 @@ void read_payload(const std::string& path, const Opened& o, size_t pixels, int s
     std::vector<char> stage;
     walk_payload(pixels, ambient, [&](int array, size_t p0, size_t p1) {
         const size_t n = p1 - p0;
-        size_t per = array < 2 ? sizeof(double) : array == 2 ? 3 * sizeof(float) : slots * 3 * sizeof(float);
-        stage.resize(n * per);
+        stage.resize(n * section_state_pixel_bytes(array, slots));
         if (!read_all(o.fd, stage.data(), stage.size())) refuse(path, "truncated while reading");
         sum.update(stage.data(), stage.size());
         take(array, p0, p1, stage.data());
@@ -327,29 +370,38 @@ SectionStateInfo verify_section_state(const std::string& path, const SectionStat
     return info_of(o.h);
 }
 
-std::unique_ptr<SectionBuffer> load_section_state(const std::string& path, const SectionStateId& expected,
-                                                  const SectionLayout& layout, bool ambient, SectionStateInfo* info) {
+SectionStateInfo load_section_state_into(const std::string& path, const SectionStateId& expected,
+                                         const SectionLayout& layout, bool ambient, const SectionStateTake& take,
+                                         SectionStateScalars* scalars) {
     File f(::open(path.c_str(), O_RDONLY | O_CLOEXEC));
     Opened o = open_checked(path, f);
     check_header(path, o, expected, layout, ambient);
     const size_t pixels = static_cast<size_t>(expected.width) * expected.height;
+    read_payload(path, o, pixels, layout.slots(), ambient, take);
+    if (scalars) {
+        scalars->pixels = pixels;
+        scalars->slots = layout.slots();
+        scalars->frames = layout.frames();
+        scalars->ambient = ambient;
+        scalars->passes_done = o.h.passes_done;
+        scalars->max_radius = o.h.max_radius;
+        scalars->volume_radius2 = o.h.volume_radius2;
+    }
+    return info_of(o.h);
+}
+
+std::unique_ptr<SectionBuffer> load_section_state(const std::string& path, const SectionStateId& expected,
+                                                  const SectionLayout& layout, bool ambient, SectionStateInfo* info) {
+    const size_t pixels = static_cast<size_t>(expected.width) * expected.height;
     auto b = std::make_unique<SectionBuffer>(pixels, layout, 0.0f, ambient);
-    const int slots = layout.slots();
-    read_payload(path, o, pixels, slots, ambient, [&](int array, size_t p0, size_t p1, const char* src) {
-        const size_t n = p1 - p0;
-        if (array == 0) std::memcpy(b->radius2.data() + p0, src, n * sizeof(double));
-        if (array == 1) std::memcpy(b->photon_count.data() + p0, src, n * sizeof(double));
-        if (array == 2) std::memcpy(b->ambient.data() + 3 * p0, src, n * 3 * sizeof(float));
-        if (array == 3) {
-            const float* in = reinterpret_cast<const float*>(src);
-            for (size_t p = p0; p < p1; ++p)
-                for (int s = 0; s < slots; ++s, in += 3) std::memcpy(b->slot(p, s), in, 3 * sizeof(float));
-        }
-    });
-    b->passes_done = o.h.passes_done;
-    b->max_radius = o.h.max_radius;
-    b->volume_radius2 = o.h.volume_radius2;
-    if (info) *info = info_of(o.h);
+    SectionStateScalars v;
+    SectionStateInfo i = load_section_state_into(
+        path, expected, layout, ambient,
+        [&](int array, size_t p0, size_t p1, const char* src) { take_section_state_chunk(*b, array, p0, p1, src); }, &v);
+    b->passes_done = v.passes_done;
+    b->max_radius = v.max_radius;
+    b->volume_radius2 = v.volume_radius2;
+    if (info) *info = i;
     return b;
 }
 

@@ -23,6 +23,7 @@
 // crash (kill -9, power loss) at any moment leaves either the previous checkpoint or the new
 // one, never a mix. Reading verifies everything and throws InputError on any mismatch.
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -68,5 +69,34 @@ SectionStateInfo verify_section_state(const std::string& path, const SectionStat
 std::unique_ptr<SectionBuffer> load_section_state(const std::string& path, const SectionStateId& expected,
                                                   const SectionLayout& layout, bool ambient,
                                                   SectionStateInfo* info = nullptr);
+
+
+// The same file from, or into, pixels held elsewhere (ranks that each own a share of the image;
+// pipeline/distributed/section_state_on_ranks.h). The payload is visited in file order, one
+// array at a time (0 radius2, 1 photon_count, 2 ambient when there is one, 3 slots), in chunks
+// of whole tiles: global pixels [p0, p1), section_state_pixel_bytes(array) bytes per pixel.
+struct SectionStateScalars {
+    size_t pixels = 0;  // of the whole image
+    int slots = 0, frames = 0;
+    bool ambient = false;
+    int passes_done = 0;
+    double max_radius = 0, volume_radius2 = 0;
+};
+size_t section_state_pixel_bytes(int array, int slots);
+void for_each_section_state_chunk(size_t pixels, bool ambient, const std::function<void(int, size_t, size_t)>& fn);
+// `fill(array, p0, p1, out)` writes the chunk's file-order bytes to `out`.
+using SectionStateFill = std::function<void(int array, size_t p0, size_t p1, char* out)>;
+uint64_t save_section_state_from(const std::string& path, const SectionStateId& id, const SectionStateScalars& v,
+                                 bool finished, const SectionStateFill& fill);
+// `take(array, p0, p1, bytes)` receives each chunk as read (the checksum is verified only after
+// the last one: a caller must not trust what it took until this returns).
+using SectionStateTake = std::function<void(int array, size_t p0, size_t p1, const char* bytes)>;
+SectionStateInfo load_section_state_into(const std::string& path, const SectionStateId& expected,
+                                         const SectionLayout& layout, bool ambient, const SectionStateTake& take,
+                                         SectionStateScalars* scalars);
+// A buffer's own scalars, and its pixels [p0, p1) (its own indices) in file order, or back.
+SectionStateScalars section_state_scalars(const SectionBuffer& b);
+void copy_section_state_chunk(const SectionBuffer& b, int array, size_t p0, size_t p1, char* out);
+void take_section_state_chunk(SectionBuffer& b, int array, size_t p0, size_t p1, const char* src);
 
 }  // namespace sl

@@ -33,6 +33,10 @@ inline ProgramResult run_ranks(int n, const std::vector<std::string>& args, cons
     ::setenv("OMPI_MCA_rmaps_base_oversubscribe", "1", 1);
     ::setenv("OMPI_MCA_hwloc_base_binding_policy", "none", 1);
     ::setenv("OMPI_MCA_mpi_yield_when_idle", "1", 1);  // more ranks than cores: waiting ones yield
+    // One machine: the ob1 layer over shared memory; looking for UCX devices (there are none)
+    // costs every rank about 0.3 s of MPI_Init.
+    ::setenv("OMPI_MCA_pml", "ob1", 1);
+    ::setenv("OMPI_MCA_osc", "^ucx", 1);
     std::vector<std::string> all = {"-np", std::to_string(n), binary()};
     all.insert(all.end(), args.begin(), args.end());
     return run_program(all, stdout_path, timeout_seconds, find_mpirun());

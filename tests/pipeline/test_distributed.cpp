@@ -59,8 +59,17 @@ void expect_same_render(const ScratchDir& dir, const std::vector<std::string>& a
             for (size_t i = 0; i < a.rgb.size(); ++i) differ += a.rgb[i] != b.rgb[i];
             EXPECT_EQ(differ, 0u) << name << " on " << n << " ranks: values differ from one process";
         }
-        EXPECT_TRUE(file_bytes(dir.file("one.npy")) == file_bytes(dir.file(tag + ".npy"))) << "cube, " << n << " ranks";
-        EXPECT_TRUE(video == file_bytes(dir.file(tag + ".y4m"))) << "decoded video, " << n << " ranks";
+        // On a mismatch, the sizes and the first differing byte say whether a file was cut short
+        // or its values differ (and stderr, whether a rank said anything).
+        auto same = [&](const std::string& a, const std::string& b, const char* what) {
+            if (a == b) return;
+            size_t at = 0;
+            while (at < std::min(a.size(), b.size()) && a[at] == b[at]) ++at;
+            ADD_FAILURE() << what << ", " << n << " ranks: " << a.size() << " bytes in one process, " << b.size()
+                          << " on ranks, first difference at byte " << at << "\n" << many.err;
+        };
+        same(file_bytes(dir.file("one.npy")), file_bytes(dir.file(tag + ".npy")), "cube");
+        same(video, file_bytes(dir.file(tag + ".y4m")), "decoded video");
     }
 }
 
