@@ -73,11 +73,11 @@ void BM_Render(benchmark::State& state) {
         auto& best_cpu = g_best_cpu[frames];
         best_cpu = best_cpu == 0 ? cpu : std::min(best_cpu, cpu);
         state.counters["photon_pass_s"] = stats.render.photons;
-        state.counters["camera_pass_s"] = stats.render.camera;
+        state.counters["camera_pass_s"] = stats.render.camera_paths;
         state.counters["scatter_s"] = stats.render.gather;
         // Camera and shadow rays over the camera pass's tracing time (its gathers excluded).
-        if (stats.render.camera > 0)
-            g_camera_rays_per_s = std::max(g_camera_rays_per_s, stats.counts.camera_rays / stats.render.camera);
+        if (stats.render.camera_paths > 0)
+            g_camera_rays_per_s = std::max(g_camera_rays_per_s, stats.counts.camera_rays / stats.render.camera_paths);
     }
 }
 

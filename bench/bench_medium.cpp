@@ -66,7 +66,7 @@ void BM_Pass(benchmark::State& state) {
         const double n = s.render.passes;
         Best b;
         b.pass_s = secs / n;
-        b.camera_s = run.render.camera / n;
+        b.camera_s = run.render.camera_paths / n;
         b.photons_s = run.render.photons / n;
         b.gather_s = run.render.gather / n;
         b.beam_s = run.render.volume / n;

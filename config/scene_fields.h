@@ -1,6 +1,6 @@
 #pragma once
 // Every field of the scene's structs, by name, for code that must see all of them rather than
-// a hand-picked few (the resume fingerprint, pipeline/settings_hash.cpp). visit_fields(x, f)
+// a hand-picked few (the resume fingerprint, pipeline/settings_fingerprint.cpp). visit_fields(x, f)
 // calls f("name", x.name) once per data member, in declaration order.
 //
 // A field added to a struct in config/scene_desc.h must be added here too:

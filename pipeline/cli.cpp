@@ -37,7 +37,7 @@
 #include "pipeline/resume_command.h"
 #include "pipeline/retime.h"
 #include "pipeline/run_stats.h"
-#include "pipeline/settings_hash.h"
+#include "pipeline/settings_fingerprint.h"
 #include "pipeline/scene_checks.h"
 #include "stages/output/atomic_file.h"
 #include "pipeline/scene_info.h"

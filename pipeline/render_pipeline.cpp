@@ -234,7 +234,7 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameSink& outputs, const Pro
         if (by_interrupt) agreed_stop = true;  // with ranks: they all stopped after the same pass
         if (!start.finished) stats.passes_run += s->passes - start.passes_done;
         if (job.preview && s->complete && !start.finished) job.preview->write(*s->run.buffer, outputs.exposure());
-        stats.render.camera += s->run.times.camera;
+        stats.render.camera_paths += s->run.times.camera_paths;
         stats.render.photons += s->run.times.photons;
         stats.render.gather += s->run.times.gather;
         stats.render.grid += s->run.times.grid;

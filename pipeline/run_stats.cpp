@@ -35,7 +35,7 @@ void write_stats_json(const std::string& path, const RunSummary& s) {
     j["stage_seconds"] = {
         {"setup", s.setup_seconds},
         {"exposure_preview", p.exposure_pass},
-        {"visible_points", p.render.camera},
+        {"camera_paths", p.render.camera_paths},
         {"photon_passes", p.render.photons},
         {"time_bucket_scatter", p.render.gather},
         {"beam_estimate", p.render.volume},  // part of the camera pass, with a medium only

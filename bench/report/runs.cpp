@@ -59,7 +59,7 @@ RunResult render(const sl::RenderContext& ctx, Strategy strategy, int passes, in
     out.cpu_s = cpu_seconds() - c0;
     out.frames = std::move(sink.frames);
     out.steady = std::move(sink.steady);
-    out.camera_s = stats.render.camera;
+    out.camera_s = stats.render.camera_paths;
     out.photons_s = stats.render.photons;
     out.gather_s = stats.render.gather;
     out.assembly_s = stats.assembly;

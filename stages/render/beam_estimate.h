@@ -13,7 +13,7 @@
 #include "stages/render/camera_segments.h"
 #include "stages/render/render_context.h"
 #include "stages/render/section_buffer.h"
-#include "stages/render/volume_photons.h"
+#include "stages/render/volume_photon_map.h"
 
 namespace sl {
 

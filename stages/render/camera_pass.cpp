@@ -160,7 +160,7 @@ CameraPassTimes camera_pass(const RenderContext& ctx, int pass, const PassPhoton
     const VolumePhotonMap* volume = medium ? photons.volume : nullptr;
     struct Work {
         double max_r2 = 0;
-        uint64_t trace = 0, volume = 0, gather = 0;  // cycles
+        uint64_t camera_paths = 0, volume = 0, gather = 0;  // cycles
     };
     const auto t0 = std::chrono::steady_clock::now();
     const std::clock_t cpu0 = std::clock();
@@ -181,10 +181,10 @@ CameraPassTimes camera_pass(const RenderContext& ctx, int pass, const PassPhoton
                 }
                 const uint64_t c2 = cycle_clock();
                 if (tracer.has_visible_point)
-                    gather_photons_at(ctx, tracer.vp, photons.surface, photons.emitted, p, buffer, deposits);
+                    gather_surface_at(ctx, tracer.vp, photons.surface, photons.emitted, p, buffer, deposits);
                 w.max_r2 = std::max(w.max_r2, buffer.radius2[p]);
                 const uint64_t c3 = cycle_clock();
-                w.trace += c1 - c0;
+                w.camera_paths += c1 - c0;
                 w.volume += c2 - c1;
                 w.gather += c3 - c2;
             }
@@ -195,7 +195,7 @@ CameraPassTimes camera_pass(const RenderContext& ctx, int pass, const PassPhoton
         },
         [](Work a, const Work& b) {
             a.max_r2 = std::max(a.max_r2, b.max_r2);
-            a.trace += b.trace;
+            a.camera_paths += b.camera_paths;
             a.volume += b.volume;
             a.gather += b.gather;
             return a;
@@ -207,9 +207,9 @@ CameraPassTimes camera_pass(const RenderContext& ctx, int pass, const PassPhoton
     ++buffer.passes_done;
 
     CameraPassTimes times;
-    const double cycles = static_cast<double>(total.trace + total.volume + total.gather);
+    const double cycles = static_cast<double>(total.camera_paths + total.volume + total.gather);
     if (cycles > 0) {
-        times.trace = wall * static_cast<double>(total.trace) / cycles;
+        times.camera_paths = wall * static_cast<double>(total.camera_paths) / cycles;
         times.volume = wall * static_cast<double>(total.volume) / cycles;
         times.gather = wall * static_cast<double>(total.gather) / cycles;
         times.volume_cpu = cpu * static_cast<double>(total.volume) / cycles;

@@ -9,11 +9,11 @@
 #include <cstdint>
 
 #include "stages/render/beam_estimate.h"
-#include "stages/render/gather.h"
+#include "stages/render/surface_gather.h"
 #include "stages/render/photon_map.h"
 #include "stages/render/render_context.h"
 #include "stages/render/section_buffer.h"
-#include "stages/render/volume_photons.h"
+#include "stages/render/volume_photon_map.h"
 
 namespace sl {
 
@@ -31,7 +31,7 @@ struct PassPhotons {
 
 // How the pass's time split between its parts (from per-pixel cycle counts), in seconds.
 struct CameraPassTimes {
-    double trace = 0;   // camera paths, direct light, emitters
+    double camera_paths = 0;  // camera paths, direct light, emitters
     double volume = 0;  // the beam estimate
     double gather = 0;  // the surface gather and the radius update
     double volume_cpu = 0;  // the beam estimate's share of the process CPU time

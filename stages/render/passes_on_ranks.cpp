@@ -48,7 +48,7 @@ void run_passes_on_ranks(const RenderContext& ctx, const SectionLayout& layout, 
         if (pass + 1 < passes) next.run([&trace, pass] { trace(pass + 1); });
         CameraPassTimes t = camera_pass(ctx, pass, PassPhotons{photons, volume, photons_per_pass}, buffer,
                                         counters.camera);
-        times.camera += t.trace;
+        times.camera_paths += t.camera_paths;
         times.gather += t.gather;
         times.volume += t.volume;
         times.volume_cpu += t.volume_cpu;

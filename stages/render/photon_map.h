@@ -10,7 +10,7 @@
 #include "core/oct_normal.h"
 #include "stages/render/render_context.h"
 #include "stages/render/section_layout.h"
-#include "stages/render/volume_photons.h"
+#include "stages/render/volume_photon_map.h"
 
 namespace sl {
 

@@ -11,7 +11,7 @@
 #include "core/material_table.h"
 #include "core/medium.h"
 #include "core/scene_geometry.h"
-#include "core/timeline.h"
+#include "foundation/timeline.h"
 #include "stages/render/rank_exchange.h"
 
 namespace sl {

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "config/scene_desc.h"
-#include "core/timeline.h"
+#include "foundation/timeline.h"
 
 namespace sl {
 

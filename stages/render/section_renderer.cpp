@@ -100,7 +100,7 @@ SectionRun render_section(const RenderContext& ctx, const SectionLayout& layout,
         if (pass < 0) return flow::continue_msg();
         CameraPassTimes t = camera_pass(ctx, pass, PassPhotons{photons, volume.get(), photons_per_pass}, buffer,
                                         counters.camera);
-        run.times.camera += t.trace;
+        run.times.camera_paths += t.camera_paths;
         run.times.gather += t.gather;
         run.times.volume += t.volume;
         run.times.volume_cpu += t.volume_cpu;

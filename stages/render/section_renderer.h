@@ -21,7 +21,7 @@
 namespace sl {
 
 struct StageTimes {
-    double camera = 0, photons = 0, gather = 0;
+    double camera_paths = 0, photons = 0, gather = 0;
     double volume = 0;      // the beam estimate (with a medium)
     double volume_cpu = 0;  // its share of the process CPU seconds
     double grid = 0;        // with ranks: sorting the exchanged photons into the grid (in `photons`)

@@ -9,7 +9,7 @@
 #include <type_traits>
 
 #include "config/scene_fields.h"
-#include "pipeline/settings_hash.h"
+#include "pipeline/settings_fingerprint.h"
 
 namespace {
 

@@ -10,7 +10,7 @@
 #include "foundation/constants.h"
 #include "core/medium.h"
 #include "core/rng.h"
-#include "stages/render/volume_photons.h"
+#include "stages/render/volume_photon_map.h"
 
 namespace sl {
 namespace {

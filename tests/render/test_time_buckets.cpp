@@ -6,7 +6,7 @@
 #include <limits>
 #include <vector>
 
-#include "core/timeline.h"
+#include "foundation/timeline.h"
 #include "stages/render/section_layout.h"
 
 namespace sl {

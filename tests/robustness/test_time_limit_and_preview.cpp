@@ -48,7 +48,7 @@ TEST(TimeLimit, StopsEverySectionAtTheSamePassWithinTheBudget) {
     }
     // Within the budget: the rendering itself took no more than the limit plus a pass or two
     // (what a pass costs is measured in the same run, so the check does not depend on speed).
-    const double render = s["stage_seconds"]["visible_points"].get<double>() +
+    const double render = s["stage_seconds"]["camera_paths"].get<double>() +
                           s["stage_seconds"]["photon_passes"].get<double>();
     const double per_pass = render / (per[0] + per[1]);
     EXPECT_LT(render, 1.5 + 3 * per_pass + 1.0);

@@ -25,7 +25,7 @@ struct VisiblePoint {
 // Adds `photons`' estimate at `vp` to pixel `pixel` of `buffer` (flux / (pi R^2 emitted)), through
 // `deposits` (the additions may still be queued on return), and shrinks the pixel's radius.
 // Returns the number of photons found.
-uint32_t gather_photons_at(const RenderContext& ctx, const VisiblePoint& vp, const PhotonMap& photons,
+uint32_t gather_surface_at(const RenderContext& ctx, const VisiblePoint& vp, const PhotonMap& photons,
                            int64_t photons_emitted, size_t pixel, SectionBuffer& buffer, DepositQueue& deposits);
 
 }  // namespace sl

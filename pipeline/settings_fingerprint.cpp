@@ -1,4 +1,4 @@
-#include "pipeline/settings_hash.h"
+#include "pipeline/settings_fingerprint.h"
 
 #include <cstdint>
 #include <cstdio>

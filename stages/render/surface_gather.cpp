@@ -1,4 +1,4 @@
-#include "stages/render/gather.h"
+#include "stages/render/surface_gather.h"
 
 #include <algorithm>
 
@@ -6,7 +6,7 @@
 
 namespace sl {
 
-uint32_t gather_photons_at(const RenderContext& ctx, const VisiblePoint& vp, const PhotonMap& photons,
+uint32_t gather_surface_at(const RenderContext& ctx, const VisiblePoint& vp, const PhotonMap& photons,
                            int64_t photons_emitted, size_t pixel, SectionBuffer& buffer,
                            DepositQueue& deposits) {
     const Timeline& tl = ctx.timeline;

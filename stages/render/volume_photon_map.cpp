@@ -1,4 +1,4 @@
-#include "stages/render/volume_photons.h"
+#include "stages/render/volume_photon_map.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
