@@ -213,7 +213,7 @@ int render(RunOptions o, const std::vector<std::string>& argv) {
                      !(s < static_cast<int>(starts.size()) && starts[s].finished);
     TimeBudget budget = o.time_limit ? TimeBudget(*o.time_limit, t0, to_render) : TimeBudget();
     if (budget.limited()) job.budget = &budget;
-    PreviewSheet preview(o.preview_path, scene.emission.mode, ctx.pulse_buckets, ctx.width, ctx.height, ex);
+    PreviewSheet preview(o.preview_path, scene.emission.mode, ctx.timeline.pulse_buckets, ctx.width, ctx.height, ex);
     if (preview.enabled()) job.preview = &preview;
     if (ex) {  // from here on every rank renders, or none does
         const int status = agree_to_start(*ex, 0, "");

@@ -31,7 +31,7 @@ void measure_buffer(const SectionBuffer& buffer, const RenderContext& ctx, Expos
         if (!rgb.empty()) meter.add_steady(rgb.data(), ctx.pixels());
     }
     if (!meter.wants_frames()) return;
-    FrameAssembler a(buffer, ctx.scene.emission.mode, ctx.pulse_buckets);
+    FrameAssembler a(buffer, ctx.scene.emission.mode, ctx.timeline.pulse_buckets);
     for (int f = buffer.layout.first_frame; f < buffer.layout.end_frame; ++f) {
         a.frame(f, rgb);
         whole_image_of(ctx, rgb);
@@ -60,7 +60,7 @@ ExposurePreview exposure_from_preview(const RenderContext& ctx, const ExposureRu
         small.render.radius = ctx.initial_radius;
         RenderContext preview(small);
         preview.exchange = ctx.exchange;
-        SectionLayout l = make_section(preview.timeline, mode, preview.pulse_buckets, 1, 0);
+        SectionLayout l = make_section(preview.timeline, mode, preview.timeline.pulse_buckets, 1, 0);
         SectionRun run = render_section(preview, l, passes, photons, on_pass, cancelled);
         ExposureMeter meter(mode, rule, emitter_pixels(preview));
         measure_buffer(*run.buffer, preview, meter);

@@ -266,7 +266,7 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameSink& outputs, const Pro
                                             resume_expectation(ctx.width, ctx.height, job.fingerprint, job_in.frame));
         } else {
             if (!s.assembler) {
-                s.assembler.emplace(*s.run.buffer, mode, ctx.pulse_buckets);
+                s.assembler.emplace(*s.run.buffer, mode, ctx.timeline.pulse_buckets);
                 if (s.last) {
                     std::vector<float> steady;
                     s.assembler->steady(steady);

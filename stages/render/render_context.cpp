@@ -21,7 +21,6 @@ RenderContext::RenderContext(const SceneDesc& desc)
     : scene(with_imports(desc)), geometry(scene), lights(scene, extent_min(scene, geometry), extent_max(scene, geometry)),
       materials(scene), camera(desc.camera) {
     timeline = timeline_of(desc);
-    pulse_buckets = timeline.pulse_buckets;
     width = desc.camera.width;
     height = desc.camera.height;
     initial_radius = desc.render.radius > 0 ? desc.render.radius : choose_initial_radius(desc, geometry, camera);

@@ -25,7 +25,6 @@ struct RenderContext {
     MaterialTable materials;     // what the tracers read at a hit (built from scene.materials)
     PinholeCamera camera;
     Timeline timeline;           // timeline_of(scene): Δ, edges, buckets, the pulse's buckets
-    int pulse_buckets = 1;       // = timeline.pulse_buckets, kept for the callers that read it here
     float initial_radius = 0;    // meters
     // The medium, only when there is something to compute (present, some extinction, a box
     // of some volume): without it every stage runs its vacuum code and allocates nothing.

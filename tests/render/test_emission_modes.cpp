@@ -60,7 +60,7 @@ TEST(EmissionModes, WiderPulseIsTheSumOfNarrowOnes) {
     s.emission.width_ns = 3 * 2.0;  // three frames wide
     s.emission.width_frames = 3;
     RenderContext wide_ctx(s);
-    ASSERT_EQ(wide_ctx.pulse_buckets, 3);
+    ASSERT_EQ(wide_ctx.timeline.pulse_buckets, 3);
     std::vector<std::vector<float>> n(12), wide(12);
     FramesInMemory sink;
     sink.on_section_rendered = [&](int, const SectionBuffer& buffer) {  // assembled 1 and 3 frames wide
