@@ -52,6 +52,15 @@ ExposurePreview exposure_from_preview(const RenderContext& ctx, const ExposureRu
     auto cancelled = [&] { return stop(out.passes); };
     const int64_t photons = ctx.scene.render.photons_per_pass;
     const EmissionMode mode = ctx.scene.emission.mode;
+    // Renders one section of `c` and measures what the rule needs on it.
+    auto measure = [&](const RenderContext& c, const SectionLayout& l) {
+        SectionRun run = render_section(c, l, passes, photons, on_pass, cancelled);
+        ExposureMeter meter(mode, rule, emitter_pixels(c));
+        measure_buffer(*run.buffer, c, meter);
+        out.exposure = meter.decide();
+        out.counts = run.counts;
+        return out;
+    };
     if (mode == EmissionMode::Pulse || rule.follow) {
         SceneDesc small = ctx.scene;
         // At least 64 pixels a side (or the image's own): a mean over fewer is too noisy.
@@ -60,24 +69,13 @@ ExposurePreview exposure_from_preview(const RenderContext& ctx, const ExposureRu
         small.render.radius = ctx.initial_radius;
         RenderContext preview(small);
         preview.exchange = ctx.exchange;
-        SectionLayout l = make_section(preview.timeline, mode, preview.timeline.pulse_buckets, 1, 0);
-        SectionRun run = render_section(preview, l, passes, photons, on_pass, cancelled);
-        ExposureMeter meter(mode, rule, emitter_pixels(preview));
-        measure_buffer(*run.buffer, preview, meter);
-        out.exposure = meter.decide();
-        out.counts = run.counts;
-        return out;
+        return measure(preview, make_section(preview.timeline, mode, preview.timeline.pulse_buckets, 1, 0));
     }
     SectionLayout l;
     l.first_frame = l.end_frame = ctx.timeline.frames;
     l.first_bucket = l.end_frame;
     l.full_paths = true;
-    SectionRun run = render_section(ctx, l, passes, photons, on_pass, cancelled);
-    ExposureMeter meter(mode, rule, emitter_pixels(ctx));
-    measure_buffer(*run.buffer, ctx, meter);
-    out.exposure = meter.decide();
-    out.counts = run.counts;
-    return out;
+    return measure(ctx, l);
 }
 
 ExposurePlan exposure_from_disk(const RenderContext& ctx, const ExposureRule& rule, const FrameOutputs& outputs) {

@@ -57,6 +57,8 @@ private:
         uint32_t count;           // leaf: photons (> 0); interior: 0
     };
     void build_node(uint32_t node, uint32_t begin, uint32_t end);
+    template <class Leaf>
+    void for_each_leaf_near(Vec3 o, Vec3 d, float length, float r, Leaf&& leaf) const;
 
     std::vector<VolumePhoton> all_;   // concatenated batches
     std::vector<uint32_t> order_;     // photon index in leaf order
@@ -65,10 +67,10 @@ private:
     std::vector<VolumePhotonPayload> payload_;
 };
 
-template <class F>
-void VolumePhotonMap::for_each_along(Vec3 o, Vec3 d, float length, float r2, F&& f) const {
-    if (nodes_.empty() || !(length > 0)) return;
-    const float r = std::sqrt(r2);
+// The leaves whose boxes, grown by r, the segment o + t d (0 <= t <= length) passes through:
+// leaf(first, count) for each. Shared by the cylinder and the cone below.
+template <class Leaf>
+void VolumePhotonMap::for_each_leaf_near(Vec3 o, Vec3 d, float length, float r, Leaf&& leaf) const {
     // A zero component becomes tiny: slab distances stay finite, never 0 * inf = NaN.
     auto inv = [](float v) { return 1.0f / (v == 0 ? 1e-30f : v); };
     const float ix = inv(d.x), iy = inv(d.y), iz = inv(d.z);
@@ -92,10 +94,17 @@ void VolumePhotonMap::for_each_along(Vec3 o, Vec3 d, float length, float r2, F&&
             stack[top++] = static_cast<uint32_t>(&n - nodes_.data()) + 1;
             continue;
         }
+        leaf(n.first_or_right, n.count);
+    }
+}
+
+template <class F>
+void VolumePhotonMap::for_each_along(Vec3 o, Vec3 d, float length, float r2, F&& f) const {
+    if (nodes_.empty() || !(length > 0)) return;
+    for_each_leaf_near(o, d, length, std::sqrt(r2), [&](uint32_t first, uint32_t count) {
         // Branch-free over the leaf, then the few hits.
-        const uint32_t first = n.first_or_right;
         uint32_t mask = 0;
-        for (uint32_t k = 0; k < n.count; ++k) {
+        for (uint32_t k = 0; k < count; ++k) {
             const float vx = px_[first + k] - o.x, vy = py_[first + k] - o.y, vz = pz_[first + k] - o.z;
             const float s = vx * d.x + vy * d.y + vz * d.z;
             // The perpendicular offset itself, not |v|^2 - s^2: no cancellation far away.
@@ -108,39 +117,17 @@ void VolumePhotonMap::for_each_along(Vec3 o, Vec3 d, float length, float r2, F&&
             mask &= mask - 1;
             f(i, (px_[i] - o.x) * d.x + (py_[i] - o.y) * d.y + (pz_[i] - o.z) * d.z);
         }
-    }
+    });
 }
 
 template <class F>
 void VolumePhotonMap::for_each_along_cone(Vec3 o, Vec3 d, float length, float r0, float s0, float slope, F&& f) const {
     if (nodes_.empty() || !(length > 0)) return;
     const float r = std::max(r0, s0 + slope * length);  // the widest, at the far end
-    auto inv = [](float v) { return 1.0f / (v == 0 ? 1e-30f : v); };
-    const float ix = inv(d.x), iy = inv(d.y), iz = inv(d.z);
-    uint32_t stack[64];
-    int top = 0;
-    stack[top++] = 0;
-    while (top > 0) {
-        const Node& n = nodes_[stack[--top]];
-        float t0 = 0, t1 = length;
-        {
-            float a = (n.lo[0] - r - o.x) * ix, b = (n.hi[0] + r - o.x) * ix;
-            t0 = std::max(t0, std::min(a, b)); t1 = std::min(t1, std::max(a, b));
-            a = (n.lo[1] - r - o.y) * iy; b = (n.hi[1] + r - o.y) * iy;
-            t0 = std::max(t0, std::min(a, b)); t1 = std::min(t1, std::max(a, b));
-            a = (n.lo[2] - r - o.z) * iz; b = (n.hi[2] + r - o.z) * iz;
-            t0 = std::max(t0, std::min(a, b)); t1 = std::min(t1, std::max(a, b));
-        }
-        if (t0 > t1) continue;
-        if (n.count == 0) {
-            stack[top++] = n.first_or_right;
-            stack[top++] = static_cast<uint32_t>(&n - nodes_.data()) + 1;
-            continue;
-        }
-        const uint32_t first = n.first_or_right;
+    for_each_leaf_near(o, d, length, r, [&](uint32_t first, uint32_t count) {
         uint32_t mask = 0;
         float ss[kLeaf], rr[kLeaf];
-        for (uint32_t k = 0; k < n.count; ++k) {
+        for (uint32_t k = 0; k < count; ++k) {
             const float vx = px_[first + k] - o.x, vy = py_[first + k] - o.y, vz = pz_[first + k] - o.z;
             const float s = vx * d.x + vy * d.y + vz * d.z;
             const float qx = vx - d.x * s, qy = vy - d.y * s, qz = vz - d.z * s;
@@ -155,7 +142,7 @@ void VolumePhotonMap::for_each_along_cone(Vec3 o, Vec3 d, float length, float r0
             mask &= mask - 1;
             f(first + k, ss[k], rr[k]);
         }
-    }
+    });
 }
 
 }  // namespace sl
