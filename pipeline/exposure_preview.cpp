@@ -69,7 +69,7 @@ ExposurePreview exposure_from_preview(const RenderContext& ctx, const ExposureRu
         small.render.radius = ctx.initial_radius;
         RenderContext preview(small);
         preview.exchange = ctx.exchange;
-        return measure(preview, make_section(preview.timeline, mode, preview.timeline.pulse_buckets, 1, 0));
+        return measure(preview, make_section(preview.timeline, mode, 1, 0));
     }
     SectionLayout l;
     l.first_frame = l.end_frame = ctx.timeline.frames;

@@ -28,7 +28,7 @@ static size_t pixel_count(const SceneDesc& s) {
 
 uint64_t section_buffer_bytes(const SceneDesc& scene, int sections, int ranks) {
     const Timeline tl = timeline_of(scene);
-    const int slots = max_section_slots(tl, scene.emission.mode, tl.pulse_buckets, sections);
+    const int slots = max_section_slots(tl, scene.emission.mode, sections);
     const size_t pixels = PixelShare{0, std::max(1, ranks), pixel_count(scene)}.count();  // rank 0 has the most
     return SectionBuffer::bytes_needed(pixels, slots, !is_black(scene.render.ambient));
 }

@@ -13,7 +13,8 @@ struct Extras {
     int count() const { return look_back + before + after; }
 };
 
-Extras extras_of(const Timeline& tl, EmissionMode mode, int pulse_buckets, int sections, int k) {
+Extras extras_of(const Timeline& tl, EmissionMode mode, int sections, int k) {
+    const int pulse_buckets = tl.pulse_buckets;
     const bool last = k == sections - 1;
     // Arrival times are never negative: the first section has nothing earlier than its first
     // bucket unless the timeline starts after t = 0. Pulse frames need no earlier light; only
@@ -24,11 +25,11 @@ Extras extras_of(const Timeline& tl, EmissionMode mode, int pulse_buckets, int s
 
 // Frames per section: the lowest level L (frames + extras) with every section at least one
 // frame, trimmed from the front down to exactly F frames.
-std::vector<int> frames_per_section(const Timeline& tl, EmissionMode mode, int pulse_buckets, int sections) {
+std::vector<int> frames_per_section(const Timeline& tl, EmissionMode mode, int sections) {
     const int f = tl.frames;
     if (sections < 1 || sections > f) throw std::invalid_argument("sections must be in 1..frames");
     std::vector<int> extra(static_cast<size_t>(sections));
-    for (int k = 0; k < sections; ++k) extra[k] = extras_of(tl, mode, pulse_buckets, sections, k).count();
+    for (int k = 0; k < sections; ++k) extra[k] = extras_of(tl, mode, sections, k).count();
     auto frames_at = [&](int64_t level) {
         int64_t n = 0;
         for (int e : extra) n += std::max<int64_t>(1, level - e);
@@ -50,9 +51,9 @@ std::vector<int> frames_per_section(const Timeline& tl, EmissionMode mode, int p
 
 }  // namespace
 
-std::vector<SectionLayout> make_sections(const Timeline& timeline, EmissionMode mode, int pulse_buckets,
+std::vector<SectionLayout> make_sections(const Timeline& timeline, EmissionMode mode,
                                          int sections) {
-    const std::vector<int> frames = frames_per_section(timeline, mode, pulse_buckets, sections);
+    const std::vector<int> frames = frames_per_section(timeline, mode, sections);
     std::vector<SectionLayout> out;
     out.reserve(frames.size());
     int first = 0;
@@ -61,10 +62,10 @@ std::vector<SectionLayout> make_sections(const Timeline& timeline, EmissionMode 
         s.index = k;
         s.first_frame = first;
         s.end_frame = first += frames[k];
-        s.first_bucket = s.first_frame - (pulse_buckets - 1);
+        s.first_bucket = s.first_frame - (timeline.pulse_buckets - 1);
         s.full_paths = k == sections - 1;
         s.cut_ns = timeline.edge(s.end_frame);
-        const Extras e = extras_of(timeline, mode, pulse_buckets, sections, k);
+        const Extras e = extras_of(timeline, mode, sections, k);
         s.has_before = e.before;
         s.has_after = e.after;
         out.push_back(s);
@@ -72,13 +73,13 @@ std::vector<SectionLayout> make_sections(const Timeline& timeline, EmissionMode 
     return out;
 }
 
-SectionLayout make_section(const Timeline& timeline, EmissionMode mode, int pulse_buckets, int sections, int index) {
-    return make_sections(timeline, mode, pulse_buckets, sections).at(static_cast<size_t>(index));
+SectionLayout make_section(const Timeline& timeline, EmissionMode mode, int sections, int index) {
+    return make_sections(timeline, mode, sections).at(static_cast<size_t>(index));
 }
 
-int max_section_slots(const Timeline& timeline, EmissionMode mode, int pulse_buckets, int sections) {
+int max_section_slots(const Timeline& timeline, EmissionMode mode, int sections) {
     int most = 0;
-    for (const SectionLayout& s : make_sections(timeline, mode, pulse_buckets, sections)) most = std::max(most, s.slots());
+    for (const SectionLayout& s : make_sections(timeline, mode, sections)) most = std::max(most, s.slots());
     return most;
 }
 

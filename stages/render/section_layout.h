@@ -38,11 +38,11 @@ struct SectionLayout {
 // because it alone also accumulates steady.exr; constant emission needs a "before" slot in
 // every section that can receive earlier light. Frames are shared out so that the sections'
 // slot counts, and so their buffers, are as equal as possible.
-std::vector<SectionLayout> make_sections(const Timeline& timeline, EmissionMode mode, int pulse_buckets,
+std::vector<SectionLayout> make_sections(const Timeline& timeline, EmissionMode mode,
                                          int sections);
-SectionLayout make_section(const Timeline& timeline, EmissionMode mode, int pulse_buckets, int sections, int index);
+SectionLayout make_section(const Timeline& timeline, EmissionMode mode, int sections, int index);
 
 // The largest slot count among make_sections(...): what one section's buffer must hold.
-int max_section_slots(const Timeline& timeline, EmissionMode mode, int pulse_buckets, int sections);
+int max_section_slots(const Timeline& timeline, EmissionMode mode, int sections);
 
 }  // namespace sl

@@ -83,7 +83,7 @@ double wall_integral(bool cloud, Vec3 cam, Vec3 look, Vec3 up) {
 // Flux of every wall arrival, per emitted path, over `passes` photon passes.
 double wall_flux_per_path(const SceneDesc& s, int passes) {
     RenderContext ctx(s);
-    SectionLayout layout = make_section(ctx.timeline, ctx.scene.emission.mode, 1, 1, 0);
+    SectionLayout layout = make_section(ctx.timeline, ctx.scene.emission.mode, 1, 0);
     PhotonMap map;
     VolumePhotonMap volume;
     PhotonTraceCounters counters;

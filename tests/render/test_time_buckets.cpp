@@ -52,7 +52,7 @@ TEST(SectionLayout, SlotsCoverBeforeFramesAndAfterWhereNeeded) {
     // Constant emission from t = 0: the first section has nothing earlier, the middle ones
     // keep a "before" slot, the last one "before" and "after" (steady.exr): extras 0, 1, 1, 2,
     // so 13, 12, 12, 11 frames give every section 13 slots.
-    std::vector<SectionLayout> c = make_sections(tl, EmissionMode::Constant, 1, 4);
+    std::vector<SectionLayout> c = make_sections(tl, EmissionMode::Constant, 4);
     ASSERT_EQ(c.size(), 4u);
     const int frames[] = {13, 12, 12, 11};
     for (int k = 0; k < 4; ++k) {
@@ -77,16 +77,18 @@ TEST(SectionLayout, SlotsCoverBeforeFramesAndAfterWhereNeeded) {
     EXPECT_EQ(c[3].after_slot(), 12);
 
     // A pulse of 3 buckets looks back 2 in every section and needs no "before" but in the last.
-    std::vector<SectionLayout> p = make_sections(tl, EmissionMode::Pulse, 3, 4);
+    Timeline pulse3 = tl;
+    pulse3.pulse_buckets = 3;
+    std::vector<SectionLayout> p = make_sections(pulse3, EmissionMode::Pulse, 4);
     EXPECT_EQ(p[1].first_bucket, p[1].first_frame - 2);
     EXPECT_FALSE(p[1].has_before);
     EXPECT_EQ(p[1].slot_of_bucket(p[1].first_bucket), 0);
     EXPECT_EQ(p[1].slot_of_bucket(p[1].first_bucket - 1), -1);
     EXPECT_TRUE(p[3].has_before && p[3].has_after);
-    EXPECT_EQ(max_section_slots(tl, EmissionMode::Pulse, 3, 4), 15);
+    EXPECT_EQ(max_section_slots(pulse3, EmissionMode::Pulse, 4), 15);
 
     // A timeline that starts after t = 0: the first section does see earlier light.
-    EXPECT_TRUE(make_section(Timeline{2, 14, 48}, EmissionMode::Constant, 1, 4, 0).has_before);
+    EXPECT_TRUE(make_section(Timeline{2, 14, 48}, EmissionMode::Constant, 4, 0).has_before);
 }
 
 TEST(SectionLayout, FramesAreSharedSoThatBuffersAreAsEqualAsPossible) {
@@ -94,8 +96,8 @@ TEST(SectionLayout, FramesAreSharedSoThatBuffersAreAsEqualAsPossible) {
         for (int pulse : {1, 4})
             for (int f : {1, 2, 3, 7, 48, 192, 1000})
                 for (int k = 1; k <= std::min(f, 40); ++k) {
-                    Timeline tl{0, 1, f};
-                    std::vector<SectionLayout> s = make_sections(tl, mode, pulse, k);
+                    Timeline tl{0, 1, f, pulse};
+                    std::vector<SectionLayout> s = make_sections(tl, mode, k);
                     ASSERT_EQ(static_cast<int>(s.size()), k);
                     int next = 0, most = 0, least = 1 << 30;
                     bool any_forced = false;  // a section held at one frame may sit below the rest
@@ -111,10 +113,10 @@ TEST(SectionLayout, FramesAreSharedSoThatBuffersAreAsEqualAsPossible) {
                     if (!any_forced) {
                         ASSERT_LE(most - least, 1) << f << " frames, " << k << " sections";
                     }
-                    ASSERT_EQ(most, max_section_slots(tl, mode, pulse, k));
+                    ASSERT_EQ(most, max_section_slots(tl, mode, k));
                     // More sections never need a larger buffer (--max-memory searches on this).
                     if (k > 1) {
-                        ASSERT_LE(most, max_section_slots(tl, mode, pulse, k - 1));
+                        ASSERT_LE(most, max_section_slots(tl, mode, k - 1));
                     }
                 }
 }
