@@ -10,24 +10,20 @@
 #include <random>
 
 #include "foundation/errors.h"
+#include "tests/render/section_layout_fixture.h"
 #include "stages/render/section_state_io.h"
 #include "tests/common/temp_dir.h"
 
 namespace sl {
 namespace {
 
-SectionLayout layout_of(int frames) {
-    SectionLayout l;
-    l.first_frame = 0, l.end_frame = frames, l.first_bucket = 0;
-    l.has_before = true, l.has_after = true;
-    return l;
-}
+using test::whole_layout;
 
 // 300 x 250 pixels: not a whole number of 16-pixel tiles, more than one write chunk.
 constexpr int kW = 300, kH = 250, kFrames = 2;
 
 std::unique_ptr<SectionBuffer> random_buffer(bool ambient) {
-    auto b = std::make_unique<SectionBuffer>(size_t(kW) * kH, layout_of(kFrames), 0.01f, ambient);
+    auto b = std::make_unique<SectionBuffer>(size_t(kW) * kH, whole_layout(kFrames), 0.01f, ambient);
     std::mt19937 rng(7);
     std::uniform_real_distribution<float> u(0, 1);
     for (auto& v : b->radius2) v = u(rng) * 1e-4;
@@ -88,7 +84,7 @@ TEST(SectionStateIo, RoundTripRestoresEveryBit) {
         const std::string path = dir.file("s.ckpt");
         save_section_state(path, *b, id_of(), true);
         SectionStateInfo info;
-        auto r = load_section_state(path, id_of(), layout_of(kFrames), ambient, &info);
+        auto r = load_section_state(path, id_of(), whole_layout(kFrames), ambient, &info);
         EXPECT_TRUE(info.finished);
         EXPECT_EQ(info.passes_done, 17);
         EXPECT_EQ(r->radius2, b->radius2);
@@ -101,9 +97,9 @@ TEST(SectionStateIo, RoundTripRestoresEveryBit) {
         // A checkpoint that does not match is refused, not trusted.
         SectionStateId other = id_of();
         other.section = 1, other.sections = 2;
-        EXPECT_THROW(load_section_state(path, other, layout_of(kFrames), ambient), InputError);
-        EXPECT_THROW(load_section_state(path, id_of(), layout_of(kFrames + 1), ambient), InputError);
-        EXPECT_THROW(load_section_state(path, id_of(), layout_of(kFrames), !ambient), InputError);
+        EXPECT_THROW(load_section_state(path, other, whole_layout(kFrames), ambient), InputError);
+        EXPECT_THROW(load_section_state(path, id_of(), whole_layout(kFrames + 1), ambient), InputError);
+        EXPECT_THROW(load_section_state(path, id_of(), whole_layout(kFrames), !ambient), InputError);
     }
     EXPECT_EQ(dir.entries(), std::vector<std::string>{"s.ckpt"}) << "no temporary file left";
 }
