@@ -15,6 +15,7 @@
 #include "pipeline/distributed/section_state_on_ranks.h"
 #include "pipeline/exposure.h"
 #include "pipeline/exposure_preview.h"
+#include "pipeline/frame_buffer_pool.h"
 #include "pipeline/resume.h"
 #include "stages/output/exr_frame_check.h"
 #include "stages/output/exr_io.h"
@@ -149,6 +150,7 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameSink& outputs, const Pro
         }
     }
 
+    FrameBufferPool frame_buffers;  // outlives the graph whose stages pass them round
     flow::graph g;
     int next_section = 0;
     flow::input_node<int> sections(g, [&](tbb::flow_control& fc) -> int {
@@ -290,6 +292,7 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameSink& outputs, const Pro
                     if (root) img.steady = std::move(steady);
                 }
             }
+            img.rgb = frame_buffers.take();
             s.assembler->frame(job_in.frame, img.rgb);
             whole_image(img.rgb);
             if (wants_cube) {
@@ -297,6 +300,7 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameSink& outputs, const Pro
                     s.assembler->before_plane(img.before);
                     whole_image(img.before);
                 }
+                img.bucket = frame_buffers.take();
                 s.assembler->bucket_plane(job_in.frame, img.bucket);
                 whole_image(img.bucket);
                 if (s.last && job_in.frame + 1 == s.layout.end_frame) {
@@ -321,6 +325,8 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameSink& outputs, const Pro
         if (!img.bucket.empty()) outputs.write_cube_plane(img.bucket);
         if (!img.after.empty()) outputs.write_cube_plane(img.after);
         stats.writing += since(t0);
+        frame_buffers.give(std::move(frame->rgb));
+        frame_buffers.give(std::move(frame->bucket));
         bool last = img.frame + 1 == img.section->layout.end_frame;
         if (last) {  // free the section's buckets before another section may allocate its own
             if (!img.section->partial) ++stats.sections_done;
