@@ -65,6 +65,7 @@ void BM_Render(benchmark::State& state) {
         sink.keep_frames = false;  // assembled and timed, not kept
         const sl::PipelineStats stats = sl::render_frames(ctx, {}, sink);
         state.counters["assemble_s"] = stats.assembly;
+        state.counters["buffer_s"] = stats.buffers;
         double secs = std::chrono::duration<double>(Clock::now() - t0).count();
         state.SetIterationTime(secs);
         auto& best = g_best_seconds[frames];

@@ -184,9 +184,11 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameSink& outputs, const Pro
                         : load_section_state(start.path, job.checkpointer->id_for(index), s->layout, ctx.has_ambient());
             ++stats.sections_resumed;
         } else {
+            const auto t0 = Clock::now();
             buffer = ex ? std::make_unique<SectionBuffer>(PixelShare{ex->rank(), ex->ranks(), ctx.pixels()}, s->layout,
                                                           ctx.initial_radius, ctx.has_ambient())
                         : std::make_unique<SectionBuffer>(ctx.pixels(), s->layout, ctx.initial_radius, ctx.has_ambient());
+            stats.buffers += since(t0);
         }
         SectionBuffer* live = buffer.get();
         log(section_line(ctx, s->layout, plan.sections, start));

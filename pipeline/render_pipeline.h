@@ -35,6 +35,7 @@ struct PipelineStats {
     StageTimes render;
     RenderCounts counts;  // every pass's photons and rays, the exposure preview's included (this rank's)
     double exposure_pass = 0, assembly = 0, writing = 0;
+    double buffers = 0;  // allocating the sections' time buckets and first touching their pages
     uint64_t photons = 0, rays = 0, photon_records = 0, photon_map_bytes = 0;  // totals of `counts`
     int sections_done = 0, sections_resumed = 0;
     int passes_run = 0;  // photon passes traced, the exposure preview's included

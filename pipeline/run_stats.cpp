@@ -34,6 +34,7 @@ void write_stats_json(const std::string& path, const RunSummary& s) {
     j["wall_seconds"] = s.wall_seconds;
     j["stage_seconds"] = {
         {"setup", s.setup_seconds},
+        {"section_buffers", p.buffers},
         {"exposure_preview", p.exposure_pass},
         {"camera_paths", p.render.camera_paths},
         {"photon_passes", p.render.photons},
