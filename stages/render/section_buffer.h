@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "stages/render/huge_page_allocator.h"
+#include "stages/render/zeroed_page_allocator.h"
 #include "stages/render/rank_exchange.h"
 #include "stages/render/section_layout.h"
 
@@ -37,7 +37,7 @@ struct SectionBuffer {
     // Indexed by the pixel's place among this buffer's pixels (share.global() maps it back).
     std::vector<double> radius2;        // per pixel, m^2
     std::vector<double> photon_count;   // per pixel: N of progressive photon mapping
-    std::vector<float, HugePageAllocator<float>> accum;  // [tile][slot][pixel in tile][rgb], sum over passes
+    std::vector<float, ZeroedPageAllocator<float>> accum;  // [tile][slot][pixel in tile][rgb], sum over passes
     std::vector<float> ambient;         // [pixel][rgb] sum over passes; empty without ambient
     double max_radius = 0;              // the largest radius, for the photon grid's cell size
     double volume_radius2 = 0;          // the beam estimate's radius^2 this pass (with a medium)
