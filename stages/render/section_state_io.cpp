@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "foundation/checksum64.h"
 #include "foundation/errors.h"
 
 namespace sl {
@@ -21,50 +22,6 @@ namespace {
 constexpr char kMagic[8] = {'S', 'L', 'C', 'H', 'K', 'P', 'T', '\n'};
 constexpr size_t kTile = SectionBuffer::kTile;
 constexpr size_t kChunkTiles = 4096;  // pixels converted and written per step: 64 Ki
-
-// A 64-bit checksum of the payload, in the manner of xxHash64 (four lanes of multiply-rotate,
-// several GB/s), streamed: the payload is never held in memory as a whole.
-class Checksum {
-public:
-    void update(const void* data, size_t n) {
-        auto* p = static_cast<const unsigned char*>(data);
-        total_ += n;
-        if (held_ > 0) {
-            size_t take = std::min(n, sizeof block_ - held_);
-            std::memcpy(block_ + held_, p, take);
-            held_ += take, p += take, n -= take;
-            if (held_ < sizeof block_) return;
-            mix(block_);
-            held_ = 0;
-        }
-        for (; n >= sizeof block_; p += sizeof block_, n -= sizeof block_) mix(p);
-        std::memcpy(block_, p, n);
-        held_ = n;
-    }
-    uint64_t value() const {
-        uint64_t h = rotl(lane_[0], 1) + rotl(lane_[1], 7) + rotl(lane_[2], 12) + rotl(lane_[3], 18);
-        h ^= total_ * kP5;
-        for (size_t i = 0; i < held_; ++i) h = rotl(h ^ (block_[i] * kP5), 11) * kP1;
-        h ^= h >> 33, h *= kP2, h ^= h >> 29, h *= kP3, h ^= h >> 32;
-        return h;
-    }
-
-private:
-    static constexpr uint64_t kP1 = 11400714785074694791ull, kP2 = 14029467366897019727ull,
-                              kP3 = 1609587929392839161ull, kP5 = 2870177450012600261ull;
-    static uint64_t rotl(uint64_t x, int r) { return (x << r) | (x >> (64 - r)); }
-    void mix(const unsigned char* p) {
-        for (int k = 0; k < 4; ++k) {
-            uint64_t w;
-            std::memcpy(&w, p + 8 * k, 8);
-            lane_[k] = rotl(lane_[k] + w * kP2, 31) * kP1;
-        }
-    }
-    uint64_t lane_[4] = {kP1 + kP2, kP2, 0, 0 - kP1};
-    unsigned char block_[32] = {};
-    size_t held_ = 0;
-    uint64_t total_ = 0;
-};
 
 // Header fields at fixed offsets (little-endian, as the machines that run this are).
 struct Header {
@@ -85,7 +42,7 @@ void put_text(char (&dst)[32], const std::string& s) {
 std::string get_text(const char (&src)[32]) { return std::string(src, strnlen(src, sizeof src)); }
 
 uint64_t header_checksum(const unsigned char* bytes) {
-    Checksum c;
+    Checksum64 c;
     c.update(bytes, kSectionStateHeaderBytes - 8);
     return c.value();
 }
@@ -168,7 +125,7 @@ uint64_t save_section_state_from(const std::string& path, const SectionStateId& 
     try {
         unsigned char head[kSectionStateHeaderBytes] = {};
         write_all(f.fd(), head, sizeof head, path);  // filled in at the end
-        Checksum sum;
+        Checksum64 sum;
         std::vector<char> stage;
         walk_payload(pixels, ambient, [&](int array, size_t p0, size_t p1) {
             stage.resize((p1 - p0) * section_state_pixel_bytes(array, slots));
@@ -341,7 +298,7 @@ void check_header(const std::string& path, const Opened& o, const SectionStateId
 // Reads the payload chunk by chunk; `take(array, p0, p1, bytes)` keeps what it wants.
 template <class Take>
 void read_payload(const std::string& path, const Opened& o, size_t pixels, int slots, bool ambient, Take&& take) {
-    Checksum sum;
+    Checksum64 sum;
     std::vector<char> stage;
     walk_payload(pixels, ambient, [&](int array, size_t p0, size_t p1) {
         const size_t n = p1 - p0;
