@@ -13,6 +13,7 @@ namespace sl {
 class Checksum64 {
 public:
     void update(const void* data, size_t n) {
+        if (n == 0) return;  // (data may then be null, which memcpy must never be given)
         auto* p = static_cast<const unsigned char*>(data);
         total_ += n;
         if (held_ > 0) {
