@@ -37,7 +37,8 @@ uint64_t fixed_overhead_bytes(const SceneDesc& scene) {
     uint64_t pixels = pixel_count(scene);
     // Photon map: a closed white room stores about albedo/(1-albedo) ~ 2.5 records per path;
     // budget 4 (or max_depth - 1) records, each in a batch and sorted, with its staged slot
-    // and index, plus a hash table of twice the records.
+    // (and, per thread, a copy of the 64th of them being sorted; budgeted as 4 bytes a record),
+    // plus a hash table of twice the records.
     uint64_t per_path = static_cast<uint64_t>(std::clamp(scene.render.max_depth - 1, 1, 4));
     uint64_t records = static_cast<uint64_t>(scene.render.photons_per_pass) * per_path;
     uint64_t photons = records * (2 * sizeof(PhotonRecord) + 2 * 4) + 4 * records * 2 * 4;
