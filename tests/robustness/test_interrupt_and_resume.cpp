@@ -219,8 +219,11 @@ TEST(Interrupt, SecondSignalExitsAtOnceWithoutBrokenFiles) {
     auto t0 = std::chrono::steady_clock::now();
     EXPECT_EQ(test::wait_exit(c, 10), 130);
     EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 5.0);
-    for (auto& e : fs::directory_iterator(dir + "/a"))
-        if (e.path().extension() == ".exr") EXPECT_NO_THROW(read_exr(e.path().string())) << e.path();
+    for (auto& e : fs::directory_iterator(dir + "/a")) {
+        if (e.path().extension() == ".exr") {
+            EXPECT_NO_THROW(read_exr(e.path().string())) << e.path();
+        }
+    }
     // The video is either closed and playable or absent; never a truncated file under its name.
     if (fs::exists(dir + "/a.mkv")) {
         EXPECT_GT(read_video(dir + "/a.mkv").frames, 0);
