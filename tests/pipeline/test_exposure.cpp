@@ -166,7 +166,9 @@ TEST(Exposure, FollowKeepsAFadingPulseReadableWithoutJumps) {
     }
     for (int k = 0; k < frames; ++k) {
         EXPECT_GE(e[k], base * (1 - 1e-9)) << "frame " << k;
-        if (k > 0) EXPECT_LT(std::max(e[k], e[k - 1]) / std::min(e[k], e[k - 1]), 1.6) << "a jump at frame " << k;
+        if (k > 0) {
+            EXPECT_LT(std::max(e[k], e[k - 1]) / std::min(e[k], e[k - 1]), 1.6) << "a jump at frame " << k;
+        }
     }
     EXPECT_GT(e.back(), 2 * e[2]) << "the fading tail was not brightened";
     // (Frame 0 also holds the lamp itself, seen at t = 0.)

@@ -189,7 +189,9 @@ TEST(BadInputs, EveryDocumentedCaseGetsItsOneErrorLine) {
             EXPECT_FALSE(fs::exists(dir + out)) << out;
             fs::remove(dir + out);
         }
-        if (r.scene != "-") EXPECT_EQ(test::read_text(dir + "/bad.json"), scene_before);
+        if (r.scene != "-") {
+            EXPECT_EQ(test::read_text(dir + "/bad.json"), scene_before);
+        }
         for (auto it = fs::recursive_directory_iterator(dir); it != fs::recursive_directory_iterator(); ++it)
             EXPECT_NE(it->path().filename().string().rfind(".slowlight-tmp-", 0), 0u) << it->path();
         // libav's and x264's own lines never reach stderr: only our prefixed lines do.
