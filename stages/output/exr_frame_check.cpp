@@ -3,7 +3,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <cstring>
 #include <limits>
 
 #include "config/input_file.h"
@@ -69,7 +68,7 @@ std::vector<float> read_verified_exr(const std::string& path, const ExrExpectati
     if (index_text != want_index)
         throw bad("carries frame index " + index_text + ", not " + want_index + " (a frame copied onto another's name?)");
     auto sum = h.metadata.find(kChecksumKey);
-    const bool bytewise = sum == h.metadata.end();  // written before the word-wise checksum
+    const bool bytewise = sum == h.metadata.end();  // written before the four-lane checksum
     if (bytewise) sum = h.metadata.find(kByteChecksumKey);
     if (sum == h.metadata.end()) throw bad("has no pixel checksum");
 

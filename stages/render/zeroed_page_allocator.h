@@ -1,6 +1,7 @@
 #pragma once
 // An allocator for the section buffer's time slots whose memory comes zeroed: blocks of 2 MiB
-// and more are fresh anonymous mappings (zero by definition), smaller ones are zeroed once. So
+// and more are fresh anonymous mappings (zero by definition, and handed back to the system
+// whole when freed), smaller ones are zeroed once. So
 // value-initialising an element does nothing: a std::vector sized with it is not filled a
 // second time, and the buffer's pages are first touched where the section buffer chooses (by
 // every thread). A vector using it must not shrink and grow again (elements regrown in the old
@@ -35,7 +36,7 @@ struct ZeroedPageAllocator {
             if (void* p = ::operator new(bytes, std::nothrow)) return static_cast<T*>(std::memset(p, 0, bytes));
             throw std::bad_alloc();
         }
-        void* p = mmap(nullptr, round_up(bytes), PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+        void* p = mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
         if (p == MAP_FAILED) throw std::bad_alloc();
         return static_cast<T*>(p);
     }
@@ -43,7 +44,7 @@ struct ZeroedPageAllocator {
     void deallocate(T* p, size_t n) noexcept {
         const size_t bytes = n * sizeof(T);
         if (bytes < kMapped) ::operator delete(p);
-        else munmap(p, round_up(bytes));
+        else munmap(p, bytes);  // the kernel rounds to whole pages, as mmap did
     }
 
     // Value-initialisation (T()) leaves allocate()'s zeros; anything else is constructed.
@@ -60,9 +61,6 @@ struct ZeroedPageAllocator {
     bool operator==(const ZeroedPageAllocator<U>&) const { return true; }
     template <class U>
     bool operator!=(const ZeroedPageAllocator<U>&) const { return false; }
-
-private:
-    static size_t round_up(size_t bytes) { return (bytes + kMapped - 1) & ~(kMapped - 1); }
 };
 
 }  // namespace sl
