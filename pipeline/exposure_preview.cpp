@@ -40,10 +40,10 @@ void measure_buffer(const SectionBuffer& buffer, const RenderContext& ctx, Expos
 }
 
 // A short convergence made only to choose the exposure before the first section's frames are
-// encoded (with one section, the section itself provides it): the steady image at full
-// resolution when that is all the rule needs; every frame at a quarter of the resolution (a
-// sixteenth of the memory) for pulses and --exposure-follow. The statistic is a mean over
-// pixels, so neither the resolution nor the preview's fewer passes move it.
+// encoded (with one section, the section itself provides it), at a quarter of the resolution
+// (a sixteenth of the camera work): the steady image alone when that is all the rule needs,
+// every frame for pulses and --exposure-follow. The statistic is a mean over pixels, so neither
+// the resolution nor the preview's fewer passes move it.
 ExposurePreview exposure_from_preview(const RenderContext& ctx, const ExposureRule& rule,
                                       const std::function<bool(int)>& stop) {
     ExposurePreview out;
@@ -52,30 +52,34 @@ ExposurePreview exposure_from_preview(const RenderContext& ctx, const ExposureRu
     auto cancelled = [&] { return stop(out.passes); };
     const int64_t photons = ctx.scene.render.photons_per_pass;
     const EmissionMode mode = ctx.scene.emission.mode;
-    // Renders one section of `c` and measures what the rule needs on it.
-    auto measure = [&](const RenderContext& c, const SectionLayout& l) {
-        SectionRun run = render_section(c, l, passes, photons, on_pass, cancelled);
-        ExposureMeter meter(mode, rule, emitter_pixels(c));
-        measure_buffer(*run.buffer, c, meter);
-        out.exposure = meter.decide();
-        out.counts = run.counts;
-        return out;
-    };
-    if (mode == EmissionMode::Pulse || rule.follow) {
-        SceneDesc small = ctx.scene;
-        // At least 64 pixels a side (or the image's own): a mean over fewer is too noisy.
-        small.camera.width = std::max(std::min(64, ctx.width), ctx.width / 4);
-        small.camera.height = std::max(std::min(64, ctx.height), ctx.height / 4);
-        small.render.radius = ctx.initial_radius;
-        RenderContext preview(small);
-        preview.exchange = ctx.exchange;
-        return measure(preview, make_section(preview.timeline, mode, 1, 0));
-    }
+    SceneDesc small = ctx.scene;
+    // At least 64 pixels a side (or the image's own): a mean over fewer is too noisy.
+    small.camera.width = std::max(std::min(64, ctx.width), ctx.width / 4);
+    small.camera.height = std::max(std::min(64, ctx.height), ctx.height / 4);
+    small.render.radius = ctx.initial_radius;
+    RenderContext preview(small);
+    preview.exchange = ctx.exchange;
     SectionLayout l;
-    l.first_frame = l.end_frame = ctx.timeline.frames;
-    l.first_bucket = l.end_frame;
-    l.full_paths = true;
-    return measure(ctx, l);
+    if (mode == EmissionMode::Pulse || rule.follow) {
+        l = make_section(preview.timeline, mode, 1, 0);
+    } else {  // the steady image only: a "before" and an "after" slot, full paths
+        l.first_frame = l.end_frame = preview.timeline.frames;
+        l.first_bucket = l.end_frame;
+        l.full_paths = true;
+    }
+    SectionRun run = render_section(preview, l, passes, photons, on_pass, cancelled);
+    ExposureMeter meter(mode, rule, emitter_pixels(preview));
+    measure_buffer(*run.buffer, preview, meter);
+    out.exposure = meter.decide();
+    out.counts = run.counts;
+    // What a pass at full resolution would take: the photons as they were, the camera's part
+    // (paths, gathers, the beam estimate) times the ratio of pixels.
+    if (out.passes > 0) {
+        const double pixels = static_cast<double>(ctx.pixels()) / static_cast<double>(preview.pixels());
+        const StageTimes& t = run.times;
+        out.full_pass_seconds = (t.photons + pixels * (t.camera_paths + t.gather + t.volume)) / out.passes;
+    }
+    return out;
 }
 
 ExposurePlan exposure_from_disk(const RenderContext& ctx, const ExposureRule& rule, const FrameOutputs& outputs) {

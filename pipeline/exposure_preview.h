@@ -23,6 +23,7 @@ struct ExposurePreview {
     ExposurePlan exposure;
     int passes = 0;       // passes the preview traced
     RenderCounts counts;  // its photons and rays
+    double full_pass_seconds = 0;  // a full-resolution, full-path pass, as the preview's times predict it
 };
 
 // `stop(passes done)` ends it early (an interrupt, or --time-limit's share spent).

@@ -144,11 +144,27 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameSink& outputs, const Pro
         stats.passes_run += preview_passes;
         malloc_trim(0);  // the preview's photon map and buffer: back to the system
         stats.exposure_pass = since(t0);
-        if (preview_passes > 0 && mode == EmissionMode::Constant) {  // a full-resolution, full-path pass
-            if (job.budget) job.budget->expect_later_pass(stats.exposure_pass / preview_passes);
-            if (job.full_pass_seconds) job.full_pass_seconds(stats.exposure_pass / preview_passes, preview_passes);
+        if (preview_passes > 0 && mode == EmissionMode::Constant) {  // a full-path pass, at full resolution
+            if (job.budget) job.budget->expect_later_pass(e.full_pass_seconds);
+            if (job.full_pass_seconds) job.full_pass_seconds(e.full_pass_seconds, preview_passes);
         }
     }
+
+    // Constant light: a section's last frame (without ambient, this rank's pixels), kept from the
+    // end of its render until the next section, if carried, starts from it (SectionLayout::carried).
+    std::vector<float> carry;
+    // The carried frame for section `index`, when the section before it was not rendered in this
+    // run but read back from --exr-dir: its last EXR frame is that frame, bit for bit (float
+    // pixels, and carried sections have no ambient term). Rank 0 reads it; each rank gets its pixels.
+    auto carry_from_disk = [&](int index) {
+        const int frame = layouts[static_cast<size_t>(index - 1)].end_frame - 1;
+        std::vector<float> whole;
+        if (root)
+            whole = read_verified_exr(job.exr_files->exr_frame_path(frame),
+                                      resume_expectation(ctx.width, ctx.height, job.fingerprint, frame));
+        if (ex) scatter_image(*ex, ctx.pixels(), whole, carry, Channel::Passes);
+        else carry = std::move(whole);
+    };
 
     FrameBufferPool frame_buffers;  // outlives the graph whose stages pass them round
     flow::graph g;
@@ -189,7 +205,13 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameSink& outputs, const Pro
                                                           ctx.initial_radius, ctx.has_ambient())
                         : std::make_unique<SectionBuffer>(ctx.pixels(), s->layout, ctx.initial_radius, ctx.has_ambient());
             stats.buffers += since(t0);
+            if (s->layout.carried) {
+                if (carry.empty()) carry_from_disk(index);
+                set_carried(*buffer, carry);
+            }
         }
+        carry.clear();  // (a checkpoint holds its carried frame in the buffer)
+        carry.shrink_to_fit();
         SectionBuffer* live = buffer.get();
         log(section_line(ctx, s->layout, plan.sections, start));
         bool by_interrupt = false;
@@ -235,6 +257,8 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameSink& outputs, const Pro
                 job.checkpointer->save(*s->run.buffer, true);
         }
         if (s->complete) stats.passes_per_section[index] = s->passes;
+        if (!by_interrupt && index + 1 < plan.sections && layouts[index + 1].carried && !resumed(index + 1))
+            carried_frame(*s->run.buffer, carry);
         if (by_interrupt) agreed_stop = true;  // with ranks: they all stopped after the same pass
         if (!start.finished) stats.passes_run += s->passes - start.passes_done;
         if (job.preview && s->complete && !start.finished) job.preview->write(*s->run.buffer, outputs.exposure());

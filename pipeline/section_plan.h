@@ -1,7 +1,8 @@
 #pragma once
 // The sections a render is cut into: K sections of the timeline (MemoryPlan), each a
-// convergence of its own; the frame-by-frame baseline makes every frame a full, independent
-// convergence with full photon paths, as the paper does.
+// convergence of its own (with constant light, a section after the first starts from the last
+// frame of the one before: SectionLayout::carried); the frame-by-frame baseline makes every
+// frame a full, independent convergence with full photon paths, as the paper does.
 #include <vector>
 
 #include "config/run_options.h"

@@ -29,6 +29,31 @@ void gather_image(RankExchange& ex, size_t pixels, std::vector<float>& rgb, Chan
     }
 }
 
+void scatter_image(RankExchange& ex, size_t pixels, const std::vector<float>& whole, std::vector<float>& mine,
+                   Channel channel) {
+    std::vector<char> all;
+    std::vector<uint64_t> counts;
+    constexpr size_t kTile = PixelShare::kTile;
+    if (ex.rank() == 0) {
+        if (whole.size() != pixels * 3) throw std::logic_error("scatter_image: not a whole image");
+        for (int r = 0; r < ex.ranks(); ++r) {
+            const PixelShare share{r, ex.ranks(), pixels};
+            counts.push_back(share.count() * 3 * sizeof(float));
+            const size_t at = all.size();
+            all.resize(at + counts.back());
+            for (size_t local = 0; local < share.count(); local += kTile) {
+                const size_t n = std::min(kTile, share.count() - local);
+                std::memcpy(all.data() + at + local * 3 * sizeof(float), &whole[share.global(local) * 3],
+                            n * 3 * sizeof(float));
+            }
+        }
+    }
+    std::vector<char> part;
+    ex.scatter(channel, all, counts, part);
+    mine.resize(part.size() / sizeof(float));
+    if (!part.empty()) std::memcpy(mine.data(), part.data(), part.size());
+}
+
 void gather_values(RankExchange& ex, std::vector<float>& values) {
     std::vector<char> all;
     std::vector<uint64_t> counts;

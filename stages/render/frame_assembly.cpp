@@ -32,16 +32,61 @@ void for_each_tile(const SectionBuffer& buffer, size_t pixels, int first, int la
     });
 }
 
+// Sums slots first..last of every pixel in double, in slot order, times `scale`: into rgb.
+void sum_slots_of(const SectionBuffer& buffer, size_t pixels, float scale, int first, int last,
+                  std::vector<float>& rgb) {
+    rgb.assign(pixels * 3, 0.0f);
+    for_each_tile(buffer, pixels, first, last, [&](size_t p0, size_t n) {
+        double sum[kTile * 3] = {};
+        for (int s = first; s <= last; ++s) {
+            const float* src = buffer.slot(p0, s);
+            for (size_t i = 0; i < n * 3; ++i) sum[i] += src[i];
+        }
+        for (size_t i = 0; i < n * 3; ++i) rgb[p0 * 3 + i] = static_cast<float>(sum[i]) * scale;
+    });
+}
+
+// Adds a carried section's "before" slot (already an average over passes) to an image.
+void add_carried_of(const SectionBuffer& buffer, size_t pixels, std::vector<float>& rgb) {
+    for_each_tile(buffer, pixels, 0, 0, [&](size_t p0, size_t n) {
+        const float* c = buffer.slot(p0, 0);
+        for (size_t i = 0; i < n * 3; ++i) rgb[p0 * 3 + i] = c[i] + rgb[p0 * 3 + i];
+    });
+}
+
+float scale_of(const SectionBuffer& buffer) {
+    return buffer.passes_done > 0 ? 1.0f / static_cast<float>(buffer.passes_done) : 0.0f;
+}
+
 }  // namespace
+
+void carried_frame(const SectionBuffer& buffer, std::vector<float>& rgb) {
+    const SectionLayout& l = buffer.layout;
+    const size_t pixels = buffer.radius2.size();
+    const int first = l.carried ? l.first_bucket_slot() : 0;
+    sum_slots_of(buffer, pixels, scale_of(buffer), first, l.slot_of_bucket(l.end_frame - 1), rgb);
+    if (l.carried) add_carried_of(buffer, pixels, rgb);
+}
+
+void set_carried(SectionBuffer& buffer, const std::vector<float>& rgb) {
+    if (!buffer.layout.carried) throw std::logic_error("this section carries nothing over");
+    if (rgb.size() != buffer.radius2.size() * 3) throw std::logic_error("carried frame of the wrong size");
+    for (size_t p = 0; p < buffer.radius2.size(); ++p) {
+        float* c = buffer.slot(p, 0);
+        c[0] = rgb[p * 3];
+        c[1] = rgb[p * 3 + 1];
+        c[2] = rgb[p * 3 + 2];
+    }
+}
 
 FrameAssembler::FrameAssembler(const SectionBuffer& buffer, EmissionMode mode, int pulse_buckets)
     : buffer_(buffer), mode_(mode), pulse_buckets_(pulse_buckets),
       pixels_(buffer.radius2.size()),
-      scale_(buffer.passes_done > 0 ? 1.0f / static_cast<float>(buffer.passes_done) : 0.0f),
+      scale_(scale_of(buffer)),
       next_slot_(buffer.layout.first_bucket_slot()) {
     if (mode_ == EmissionMode::Constant) {
         running_.assign(pixels_ * 3, 0.0);
-        if (buffer.layout.has_before)
+        if (buffer.layout.has_before && !buffer.layout.carried)  // (a carried one is added as it is)
             for_each_tile(buffer_, pixels_, 0, 0, [&](size_t p0, size_t n) {
                 const float* src = buffer_.slot(p0, 0);
                 for (size_t i = 0; i < n * 3; ++i) running_[p0 * 3 + i] = src[i];
@@ -63,6 +108,7 @@ void FrameAssembler::frame(int global_frame, std::vector<float>& rgb) {
     if (mode_ == EmissionMode::Constant) {
         if (last_slot < next_slot_) throw std::logic_error("constant frames must be assembled in order");
         const int from = next_slot_;
+        const bool carried = l.carried;
         for_each_tile(buffer_, pixels_, from, last_slot, [&](size_t p0, size_t n) {
             double* run = &running_[p0 * 3];
             for (int s = from; s <= last_slot; ++s) {
@@ -70,6 +116,10 @@ void FrameAssembler::frame(int global_frame, std::vector<float>& rgb) {
                 for (size_t i = 0; i < n * 3; ++i) run[i] += src[i];
             }
             for (size_t i = 0; i < n * 3; ++i) rgb[p0 * 3 + i] = static_cast<float>(run[i]) * scale_;
+            if (carried) {  // the previous section's last frame, as carried_frame() adds it
+                const float* c = buffer_.slot(p0, 0);
+                for (size_t i = 0; i < n * 3; ++i) rgb[p0 * 3 + i] = c[i] + rgb[p0 * 3 + i];
+            }
         });
         next_slot_ = last_slot + 1;
     } else {
@@ -79,20 +129,17 @@ void FrameAssembler::frame(int global_frame, std::vector<float>& rgb) {
 }
 
 void FrameAssembler::steady(std::vector<float>& rgb) const {
-    sum_slots(0, buffer_.slots - 1, rgb);
+    if (buffer_.layout.carried) {
+        sum_slots(buffer_.layout.first_bucket_slot(), buffer_.slots - 1, rgb);
+        add_carried_of(buffer_, pixels_, rgb);
+    } else {
+        sum_slots(0, buffer_.slots - 1, rgb);
+    }
     add_ambient(rgb);
 }
 
 void FrameAssembler::sum_slots(int first, int last, std::vector<float>& rgb) const {
-    rgb.assign(pixels_ * 3, 0.0f);
-    for_each_tile(buffer_, pixels_, first, last, [&](size_t p0, size_t n) {
-        double sum[kTile * 3] = {};
-        for (int s = first; s <= last; ++s) {
-            const float* src = buffer_.slot(p0, s);
-            for (size_t i = 0; i < n * 3; ++i) sum[i] += src[i];
-        }
-        for (size_t i = 0; i < n * 3; ++i) rgb[p0 * 3 + i] = static_cast<float>(sum[i]) * scale_;
-    });
+    sum_slots_of(buffer_, pixels_, scale_, first, last, rgb);
 }
 
 void FrameAssembler::bucket_plane(int global_frame, std::vector<float>& rgb) const {
@@ -101,6 +148,11 @@ void FrameAssembler::bucket_plane(int global_frame, std::vector<float>& rgb) con
 }
 
 void FrameAssembler::before_plane(std::vector<float>& rgb) const {
+    if (buffer_.layout.carried) {  // (no look-back buckets with constant light)
+        rgb.assign(pixels_ * 3, 0.0f);
+        add_carried_of(buffer_, pixels_, rgb);
+        return;
+    }
     sum_slots(0, buffer_.layout.slot_of_bucket(buffer_.layout.first_frame) - 1, rgb);
 }
 

@@ -9,6 +9,15 @@
 
 namespace sl {
 
+// A carried section (SectionLayout::carried) keeps the previous section's last frame in its
+// "before" slot as an average, not a sum over passes: its frames add it as it is.
+//
+// The section's last frame without the ambient term: what the next section carries over. Equal,
+// bit for bit, to that frame as FrameAssembler::frame() makes it (without ambient).
+void carried_frame(const SectionBuffer& buffer, std::vector<float>& rgb);
+// Puts `rgb` (this buffer's pixels, 3 floats each) into a carried section's "before" slot.
+void set_carried(SectionBuffer& buffer, const std::vector<float>& rgb);
+
 class FrameAssembler {
 public:
     FrameAssembler(const SectionBuffer& buffer, EmissionMode mode, int pulse_buckets);

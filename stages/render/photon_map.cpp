@@ -24,6 +24,12 @@ struct PhotonPath {
     const HomogeneousMedium* medium;   // null in vacuum
     std::vector<VolumePhoton>* volume;  // with a medium
     uint64_t rays = 0;
+    // A carried section (SectionLayout::carried) has no use for light arriving before its first
+    // bucket: such photons are traced on (they may scatter later light) but not stored. Only
+    // without camera_tof, where a photon's time is its arrival time; with it, the camera leg
+    // may still move an earlier photon into the section.
+    const bool drop_early = layout.carried && !ctx.scene.render.camera_tof;
+    bool early(double t) const { return drop_early && ctx.timeline.bucket(t) < layout.first_bucket; }
 
     void trace(Rng& rng) {
         const SceneDesc& sc = ctx.scene;
@@ -49,7 +55,7 @@ struct PhotonPath {
                         t += s / kSpeedOfLight;
                         if (t >= cut || is_black(flux)) return;
                         o = o + d * s;
-                        if (volume)
+                        if (volume && !early(t))
                             volume->push_back({o.x, o.y, o.z, d.x, d.y, d.z, flux.x, flux.y, flux.z,
                                                static_cast<uint32_t>(depth), t});
                         if (depth == max_depth) return;
@@ -73,7 +79,7 @@ struct PhotonPath {
             Vec3 nf = toward ? hit.normal : -hit.normal;
             if (m.type == MaterialType::Diffuse) {
                 Vec3 ns = toward ? hit.shading_normal : -hit.shading_normal;
-                if (depth >= 2 || e.direct_by_photons)
+                if ((depth >= 2 || e.direct_by_photons) && !early(t))
                     out.push_back({hit.position.x, hit.position.y, hit.position.z, flux.x, flux.y, flux.z,
                                    encode_normal(ns), static_cast<uint32_t>(depth), t});
                 const Vec3 albedo = albedo_at(m, hit);

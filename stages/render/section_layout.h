@@ -19,6 +19,12 @@ struct SectionLayout {
     double cut_ns = 0;         // with !full_paths: arrival times >= cut_ns are of no use
     bool has_before = true;    // a slot for arrivals before first_bucket
     bool has_after = true;     // a slot for arrivals at or after end_frame
+    // Constant emission, sections after the first: the "before" slot holds the previous
+    // section's last frame (its average over passes, ambient term excluded), carried over
+    // instead of gathered again, and nothing is deposited there. Light arriving before the
+    // section's first bucket is then of no use to it: a photon, shadow ray or deposit for it
+    // is skipped (slot_of_bucket says -1).
+    bool carried = false;
 
     int frames() const { return end_frame - first_frame; }
     int buckets() const { return static_cast<int>(end_frame - first_bucket); }
@@ -28,7 +34,7 @@ struct SectionLayout {
     int after_slot() const { return has_after ? first_bucket_slot() + buckets() : -1; }
     // Slot of a bucket index; -1 where the section keeps nothing (arrivals it has no use for).
     int slot_of_bucket(int64_t j) const {
-        if (j < first_bucket) return before_slot();
+        if (j < first_bucket) return carried ? -1 : before_slot();
         if (j >= end_frame) return after_slot();
         return static_cast<int>(j - first_bucket) + first_bucket_slot();
     }
