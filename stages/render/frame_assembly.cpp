@@ -32,12 +32,26 @@ void for_each_tile(const SectionBuffer& buffer, size_t pixels, int first, int la
     });
 }
 
-// Sums slots first..last of every pixel in double, in slot order, times `scale`: into rgb.
-void sum_slots_of(const SectionBuffer& buffer, size_t pixels, float scale, int first, int last,
-                  std::vector<float>& rgb) {
+float scale_of(const SectionBuffer& buffer) {
+    return buffer.passes_done > 0 ? 1.0f / static_cast<float>(buffer.passes_done) : 0.0f;
+}
+
+// Where a pixel's running sum starts: a carried section's "before" slot is an average, so it
+// enters the sum of passes as that average times the passes (exact in double: a float times an
+// int), so that its frames cost what any other section's do.
+double carried_start(const SectionBuffer& buffer, float carried) {
+    return static_cast<double>(carried) * static_cast<double>(buffer.passes_done);
+}
+
+// Sums, in double and in slot order, a carried section's starting value and slots first..last,
+// times `scale` (the steps of FrameAssembler::frame, so the results equal its frames).
+void sum_carried(const SectionBuffer& buffer, size_t pixels, int first, int last, std::vector<float>& rgb) {
+    const float scale = scale_of(buffer);
     rgb.assign(pixels * 3, 0.0f);
     for_each_tile(buffer, pixels, first, last, [&](size_t p0, size_t n) {
-        double sum[kTile * 3] = {};
+        double sum[kTile * 3];
+        const float* c = buffer.slot(p0, 0);
+        for (size_t i = 0; i < n * 3; ++i) sum[i] = carried_start(buffer, c[i]);
         for (int s = first; s <= last; ++s) {
             const float* src = buffer.slot(p0, s);
             for (size_t i = 0; i < n * 3; ++i) sum[i] += src[i];
@@ -46,26 +60,13 @@ void sum_slots_of(const SectionBuffer& buffer, size_t pixels, float scale, int f
     });
 }
 
-// Adds a carried section's "before" slot (already an average over passes) to an image.
-void add_carried_of(const SectionBuffer& buffer, size_t pixels, std::vector<float>& rgb) {
-    for_each_tile(buffer, pixels, 0, 0, [&](size_t p0, size_t n) {
-        const float* c = buffer.slot(p0, 0);
-        for (size_t i = 0; i < n * 3; ++i) rgb[p0 * 3 + i] = c[i] + rgb[p0 * 3 + i];
-    });
-}
-
-float scale_of(const SectionBuffer& buffer) {
-    return buffer.passes_done > 0 ? 1.0f / static_cast<float>(buffer.passes_done) : 0.0f;
-}
-
 }  // namespace
 
 void carried_frame(const SectionBuffer& buffer, std::vector<float>& rgb) {
     const SectionLayout& l = buffer.layout;
-    const size_t pixels = buffer.radius2.size();
-    const int first = l.carried ? l.first_bucket_slot() : 0;
-    sum_slots_of(buffer, pixels, scale_of(buffer), first, l.slot_of_bucket(l.end_frame - 1), rgb);
-    if (l.carried) add_carried_of(buffer, pixels, rgb);
+    const int last = l.slot_of_bucket(l.end_frame - 1);
+    if (l.carried) return sum_carried(buffer, buffer.radius2.size(), l.first_bucket_slot(), last, rgb);
+    FrameAssembler(buffer, EmissionMode::Pulse, 1).slots(0, last, rgb);  // (no running sum needed)
 }
 
 void set_carried(SectionBuffer& buffer, const std::vector<float>& rgb) {
@@ -86,10 +87,12 @@ FrameAssembler::FrameAssembler(const SectionBuffer& buffer, EmissionMode mode, i
       next_slot_(buffer.layout.first_bucket_slot()) {
     if (mode_ == EmissionMode::Constant) {
         running_.assign(pixels_ * 3, 0.0);
-        if (buffer.layout.has_before && !buffer.layout.carried)  // (a carried one is added as it is)
+        const bool carried = buffer.layout.carried;
+        if (buffer.layout.has_before)
             for_each_tile(buffer_, pixels_, 0, 0, [&](size_t p0, size_t n) {
                 const float* src = buffer_.slot(p0, 0);
-                for (size_t i = 0; i < n * 3; ++i) running_[p0 * 3 + i] = src[i];
+                for (size_t i = 0; i < n * 3; ++i)
+                    running_[p0 * 3 + i] = carried ? carried_start(buffer_, src[i]) : src[i];
             });
     }
 }
@@ -108,7 +111,6 @@ void FrameAssembler::frame(int global_frame, std::vector<float>& rgb) {
     if (mode_ == EmissionMode::Constant) {
         if (last_slot < next_slot_) throw std::logic_error("constant frames must be assembled in order");
         const int from = next_slot_;
-        const bool carried = l.carried;
         for_each_tile(buffer_, pixels_, from, last_slot, [&](size_t p0, size_t n) {
             double* run = &running_[p0 * 3];
             for (int s = from; s <= last_slot; ++s) {
@@ -116,10 +118,6 @@ void FrameAssembler::frame(int global_frame, std::vector<float>& rgb) {
                 for (size_t i = 0; i < n * 3; ++i) run[i] += src[i];
             }
             for (size_t i = 0; i < n * 3; ++i) rgb[p0 * 3 + i] = static_cast<float>(run[i]) * scale_;
-            if (carried) {  // the previous section's last frame, as carried_frame() adds it
-                const float* c = buffer_.slot(p0, 0);
-                for (size_t i = 0; i < n * 3; ++i) rgb[p0 * 3 + i] = c[i] + rgb[p0 * 3 + i];
-            }
         });
         next_slot_ = last_slot + 1;
     } else {
@@ -129,17 +127,23 @@ void FrameAssembler::frame(int global_frame, std::vector<float>& rgb) {
 }
 
 void FrameAssembler::steady(std::vector<float>& rgb) const {
-    if (buffer_.layout.carried) {
-        sum_slots(buffer_.layout.first_bucket_slot(), buffer_.slots - 1, rgb);
-        add_carried_of(buffer_, pixels_, rgb);
-    } else {
-        sum_slots(0, buffer_.slots - 1, rgb);
-    }
+    if (buffer_.layout.carried) sum_carried(buffer_, pixels_, buffer_.layout.first_bucket_slot(), buffer_.slots - 1, rgb);
+    else sum_slots(0, buffer_.slots - 1, rgb);
     add_ambient(rgb);
 }
 
+void FrameAssembler::slots(int first, int last, std::vector<float>& rgb) const { sum_slots(first, last, rgb); }
+
 void FrameAssembler::sum_slots(int first, int last, std::vector<float>& rgb) const {
-    sum_slots_of(buffer_, pixels_, scale_, first, last, rgb);
+    rgb.assign(pixels_ * 3, 0.0f);
+    for_each_tile(buffer_, pixels_, first, last, [&](size_t p0, size_t n) {
+        double sum[kTile * 3] = {};
+        for (int s = first; s <= last; ++s) {
+            const float* src = buffer_.slot(p0, s);
+            for (size_t i = 0; i < n * 3; ++i) sum[i] += src[i];
+        }
+        for (size_t i = 0; i < n * 3; ++i) rgb[p0 * 3 + i] = static_cast<float>(sum[i]) * scale_;
+    });
 }
 
 void FrameAssembler::bucket_plane(int global_frame, std::vector<float>& rgb) const {
@@ -148,9 +152,12 @@ void FrameAssembler::bucket_plane(int global_frame, std::vector<float>& rgb) con
 }
 
 void FrameAssembler::before_plane(std::vector<float>& rgb) const {
-    if (buffer_.layout.carried) {  // (no look-back buckets with constant light)
+    if (buffer_.layout.carried) {  // the carried frame itself (no look-back buckets with constant light)
         rgb.assign(pixels_ * 3, 0.0f);
-        add_carried_of(buffer_, pixels_, rgb);
+        for_each_tile(buffer_, pixels_, 0, 0, [&](size_t p0, size_t n) {
+            const float* c = buffer_.slot(p0, 0);
+            for (size_t i = 0; i < n * 3; ++i) rgb[p0 * 3 + i] = c[i];
+        });
         return;
     }
     sum_slots(0, buffer_.layout.slot_of_bucket(buffer_.layout.first_frame) - 1, rgb);

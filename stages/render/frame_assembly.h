@@ -10,7 +10,7 @@
 namespace sl {
 
 // A carried section (SectionLayout::carried) keeps the previous section's last frame in its
-// "before" slot as an average, not a sum over passes: its frames add it as it is.
+// "before" slot as an average, not a sum over passes; its frames start from it.
 //
 // The section's last frame without the ambient term: what the next section carries over. Equal,
 // bit for bit, to that frame as FrameAssembler::frame() makes it (without ambient).
@@ -31,6 +31,8 @@ public:
     void bucket_plane(int global_frame, std::vector<float>& rgb) const;
     void before_plane(std::vector<float>& rgb) const;
     void after_plane(std::vector<float>& rgb) const;
+    // Slots first..last summed, over the passes (no ambient term).
+    void slots(int first, int last, std::vector<float>& rgb) const;
 
 private:
     void add_ambient(std::vector<float>& rgb) const;

@@ -65,10 +65,14 @@ TEST(Sections, SplitRenderMatchesSingleWithinNoise) {
     // Constant light only ever adds: every pixel of every frame is at least its value in the
     // frame before, across section boundaries too (a section starts from the last frame of the
     // one before, then adds its own buckets; independently gathered sections would not keep this).
+    // At a boundary, to float rounding: the carried frame re-enters a sum over the passes.
+    auto at_least = [](float later, float earlier) { return later >= earlier - 4e-7f * earlier; };
     for (size_t k = 1; k < four.frames.size(); ++k)
         for (size_t i = 0; i < four.frames[k].size(); ++i)
-            ASSERT_GE(four.frames[k][i], four.frames[k - 1][i]) << "frame " << k << ", value " << i;
-    for (size_t i = 0; i < four.steady.size(); ++i) ASSERT_GE(four.steady[i], four.frames.back()[i]) << "value " << i;
+            ASSERT_TRUE(at_least(four.frames[k][i], four.frames[k - 1][i]))
+                << "frame " << k << ", value " << i << ": " << four.frames[k][i] << " after " << four.frames[k - 1][i];
+    for (size_t i = 0; i < four.steady.size(); ++i)
+        ASSERT_TRUE(at_least(four.steady[i], four.frames.back()[i])) << "value " << i;
 }
 
 }  // namespace
