@@ -129,6 +129,27 @@ TEST_F(DistributedResume, InterruptedInTheSecondSectionResumesOnThreeRanksExactl
     interrupt_then_resume(dir, "cornell_box.json", "30", "20000", {"--sections", "2"}, "section_0001.ckpt", {3});
 }
 
+// Three sections of constant light, the last one lost (its last frame and steady.exr gone, no
+// checkpoint): on 2 ranks --resume renders it again from the frame the second section carries
+// over, which rank 0 reads back from that section's last EXR and deals out to the ranks.
+TEST_F(DistributedResume, LostLastSectionResumesOnTwoRanksFromTheCarriedFrameOnDisk) {
+    auto args = [&](const std::string& out, std::vector<std::string> more) {
+        more.insert(more.end(), {"--sections", "3", "--exr-dir", out});
+        return render_args("cornell_box.json", "6", more, "8000");
+    };
+    ProgramResult one = run_program(args(dir.file("one"), {}));
+    ASSERT_EQ(one.exit_code, 0) << one.err;
+    const std::string cut = dir.file("cut");
+    std::filesystem::copy(dir.file("one"), cut);
+    std::filesystem::remove(cut + "/" + frame_name(5));
+    std::filesystem::remove(cut + "/steady.exr");
+    ProgramResult r = run_ranks(2, args(cut, {"--resume"}));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("section 3/3"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("section 2/3"), std::string::npos) << "only the lost section is rendered:\n" << r.err;
+    EXPECT_EQ(differing_values(dir.file("one"), cut, 6), 0u);
+}
+
 // --time-limit on 2 ranks: rank 0's clock decides, every rank stops after the same pass, and
 // the frames are those of a one-process render given that many passes.
 TEST_F(DistributedResume, TimeLimitOnTwoRanksIsTheOneProcessRenderOfThePassesItReached) {
