@@ -50,8 +50,13 @@ ExposurePreview exposure_from_preview(const RenderContext& ctx, const ExposureRu
     const int passes = preview_passes(ctx.scene.render.passes);
     auto on_pass = [&](int p) { out.passes = p; };
     auto cancelled = [&] { return stop(out.passes); };
-    const int64_t photons = ctx.scene.render.photons_per_pass;
     const EmissionMode mode = ctx.scene.emission.mode;
+    const bool steady_only = !(mode == EmissionMode::Pulse || rule.follow);
+    // The steady image's mean is the light the whole room receives: a quarter of the photons
+    // still puts four times as many on each preview pixel as the render does. Frames (pulses,
+    // --exposure-follow) keep them all: the brightest of many noisy frame means is biased high.
+    const int64_t photons = steady_only ? std::max<int64_t>(1, ctx.scene.render.photons_per_pass / 4)
+                                        : ctx.scene.render.photons_per_pass;
     SceneDesc small = ctx.scene;
     // At least 64 pixels a side (or the image's own): a mean over fewer is too noisy.
     small.camera.width = std::max(std::min(64, ctx.width), ctx.width / 4);
@@ -60,7 +65,7 @@ ExposurePreview exposure_from_preview(const RenderContext& ctx, const ExposureRu
     RenderContext preview(small);
     preview.exchange = ctx.exchange;
     SectionLayout l;
-    if (mode == EmissionMode::Pulse || rule.follow) {
+    if (!steady_only) {
         l = make_section(preview.timeline, mode, 1, 0);
     } else {  // the steady image only: a "before" and an "after" slot, full paths
         l.first_frame = l.end_frame = preview.timeline.frames;
@@ -72,12 +77,13 @@ ExposurePreview exposure_from_preview(const RenderContext& ctx, const ExposureRu
     measure_buffer(*run.buffer, preview, meter);
     out.exposure = meter.decide();
     out.counts = run.counts;
-    // What a pass at full resolution would take: the photons as they were, the camera's part
-    // (paths, gathers, the beam estimate) times the ratio of pixels.
+    // What a pass at full resolution would take: the photons times the ratio of photons, the
+    // camera's part (paths, gathers, the beam estimate) times the ratio of pixels.
     if (out.passes > 0) {
         const double pixels = static_cast<double>(ctx.pixels()) / static_cast<double>(preview.pixels());
+        const double more = static_cast<double>(ctx.scene.render.photons_per_pass) / static_cast<double>(photons);
         const StageTimes& t = run.times;
-        out.full_pass_seconds = (t.photons + pixels * (t.camera_paths + t.gather + t.volume)) / out.passes;
+        out.full_pass_seconds = (more * t.photons + pixels * (t.camera_paths + t.gather + t.volume)) / out.passes;
     }
     return out;
 }
