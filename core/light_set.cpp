@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "foundation/constants.h"
 #include "foundation/errors.h"
@@ -172,6 +173,21 @@ bool LightSet::sample_direct(size_t i, Vec3 p, Vec3 n, float u1, float u2, Direc
     out.to_light = wi;
     out.distance = d;
     return true;
+}
+
+double LightSet::latest_arrival_ns(size_t i, Vec3 p) const {
+    const Light& l = lights_[i];
+    if (l.mesh) return std::numeric_limits<double>::infinity();
+    double far = 0;  // the farthest a sample of the light can be from p
+    switch (l.desc.type) {
+    case LightType::Laser:
+    case LightType::Sun: return std::numeric_limits<double>::infinity();
+    case LightType::Point:
+    case LightType::Spot: far = length(l.desc.position - p); break;
+    case LightType::Quad: far = length(l.desc.corner - p) + length(l.desc.edge1) + length(l.desc.edge2); break;
+    }
+    // (a margin for the float arithmetic of the sample's own distance)
+    return far * (1 + 1e-4) / kSpeedOfLight;
 }
 
 }  // namespace sl

@@ -40,6 +40,9 @@ public:
     // when light i cannot reach p this way (back side, outside a spot's cone, a laser,
     // a sun below the horizon).
     bool sample_direct(size_t i, Vec3 p, Vec3 n, float u1, float u2, DirectLightSample& out) const;
+    // No sample of light i arrives at p later than this (ns; +infinity where no cheap bound is
+    // known: suns, emissive meshes). A carried section skips lights whose light is all earlier.
+    double latest_arrival_ns(size_t i, Vec3 p) const;
     // Quad light i seen along d (a camera path hitting it): whether its front (edge1 x edge2,
     // the stored normal) faces the viewer, and the radiance it then sends.
     bool quad_front_seen(size_t i, Vec3 d) const { return dot(d, lights_[i].normal) < 0; }

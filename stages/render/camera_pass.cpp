@@ -135,9 +135,14 @@ struct PixelTracer {
         }
         // Direct light: one shadow ray per light, arriving after the light-to-point length.
         Vec3 origin = p + nf * ray_epsilon(p, hit_t);  // the hit's error grows with the ray's length
+        const bool carried = buffer.layout.carried;
         for (size_t i = 0; i < ctx.lights.count(); ++i) {
             DirectLightSample s;
             float u1 = rng.uniform(), u2 = rng.uniform();
+            // A carried section keeps nothing that arrives before it: a light whose every
+            // sample would is not even sampled.
+            if (carried && ctx.timeline.bucket(ctx.lights.latest_arrival_ns(i, p) + back_ns) < buffer.layout.first_bucket)
+                continue;
             if (!ctx.lights.sample_direct(i, p, ns, u1, u2, s)) continue;
             if (dot(s.to_light, nf) <= 0) continue;  // below the true surface: no leak through it
             const double t = s.start_ns + s.distance / kSpeedOfLight + back_ns;
