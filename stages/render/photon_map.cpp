@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <chrono>
 #include <cstring>
 
 #include "core/rng.h"
@@ -127,8 +128,9 @@ bool PhotonMap::trace(const RenderContext& ctx, const SectionLayout& layout, int
     const size_t nbatches = ctx.lights.has_emission() ? static_cast<size_t>((count + kBatch - 1) / kBatch) : 0;
     batches_.resize(nbatches);
     RankExchange* ex = ctx.exchange;
-    const size_t own_first = ex ? first_batch(nbatches, ex->rank(), ex->ranks()) : 0;
-    const size_t own_end = ex ? first_batch(nbatches, ex->rank() + 1, ex->ranks()) : nbatches;
+    const size_t own_first = ex ? share_begin(nbatches, ex->rank(), ex->ranks()) : 0;
+    const size_t own_end = ex ? share_begin(nbatches, ex->rank() + 1, ex->ranks()) : nbatches;
+    const auto t0 = std::chrono::steady_clock::now();
     tbb::parallel_for(own_first, own_end, [&](size_t b) {
         Batch& batch = batches_[b];
         batch.records.clear();
@@ -150,7 +152,12 @@ bool PhotonMap::trace(const RenderContext& ctx, const SectionLayout& layout, int
     }
     counters.stored.fetch_add(own, std::memory_order_relaxed);  // this rank's own records
     if (volume) counters.stored_volume.fetch_add(own_volume, std::memory_order_relaxed);
+    own_trace_.photons = std::clamp<int64_t>(count - static_cast<int64_t>(own_first) * kBatch, 0,
+                                             static_cast<int64_t>(own_end - own_first) * kBatch);
+    const auto t1 = std::chrono::steady_clock::now();
+    own_trace_.trace_seconds = std::chrono::duration<double>(t1 - t0).count();
     if (ex) exchange_batches(*ex, nbatches);
+    own_trace_.exchange_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
     return true;
 }
 
@@ -174,7 +181,7 @@ void PhotonMap::finish(const RenderContext& ctx, double cell_size, PhotonTraceCo
 // batch order, every rank ends with the same batches, hence the same grid and the same BVH.
 void PhotonMap::exchange_batches(RankExchange& ex, size_t nbatches) {
     const int n = ex.ranks(), me = ex.rank();
-    const size_t first = first_batch(nbatches, me, n), end = first_batch(nbatches, me + 1, n);
+    const size_t first = share_begin(nbatches, me, n), end = share_begin(nbatches, me + 1, n);
     std::vector<char>& mine = outgoing_;  // kept between passes: no fresh pages to fault in per pass
     {
         size_t bytes = (end - first) * 2 * sizeof(uint32_t);
@@ -208,7 +215,7 @@ void PhotonMap::exchange_batches(RankExchange& ex, size_t nbatches) {
     const char* at = exchanged_.data();
     for (int r = 0; r < n; ++r) {
         const char* next = at + counts[static_cast<size_t>(r)];
-        const size_t f = first_batch(nbatches, r, n), e = first_batch(nbatches, r + 1, n);
+        const size_t f = share_begin(nbatches, r, n), e = share_begin(nbatches, r + 1, n);
         if (r != me) {
             const char* data = at + (e - f) * 2 * sizeof(uint32_t);
             for (size_t b = f; b < e; ++b) {

@@ -57,6 +57,17 @@ public:
     template <class F>
     void for_each_near(float px, float py, float pz, float r2, F&& f) const;
 
+    // With ranks: the batches each rank traces, as boundaries (stages/render/batch_shares.h);
+    // equal counts unless set. Set between passes only, never while a trace runs.
+    void set_batch_shares(std::vector<size_t> bounds) { shares_ = std::move(bounds); }
+    // This rank's part of the last trace: wall time of its own batches and of the exchange
+    // (waiting for the other ranks included), and its photon paths; what balances the shares.
+    struct OwnTrace {
+        double trace_seconds = 0, exchange_seconds = 0;
+        int64_t photons = 0;
+    };
+    const OwnTrace& own_trace() const { return own_trace_; }
+
     static constexpr int kBatch = 4096;     // photon paths per task
     static constexpr int kPartitionBits = 6;  // the sort's first, parallel, radix step
     // The batches rank `rank` of `ranks` traces: a contiguous share, [first, end).
@@ -71,6 +82,12 @@ private:
     }
     int32_t cell(float v) const { return static_cast<int32_t>(std::floor(v * inv_cell_)); }
     void sort_into_grid(size_t total);
+    // The first batch of rank `rank`'s share (set_batch_shares, else first_batch).
+    size_t share_begin(size_t nbatches, int rank, int ranks) const {
+        return shares_.size() == static_cast<size_t>(ranks) + 1 && shares_.back() == nbatches
+                   ? shares_[static_cast<size_t>(rank)]
+                   : first_batch(nbatches, rank, ranks);
+    }
     // With several ranks: each traced batches [first, end) of its own; afterwards every rank
     // holds every batch, as one process would have traced them.
     void exchange_batches(RankExchange& ex, size_t nbatches);
@@ -98,6 +115,8 @@ private:
     std::vector<uint32_t> partition_start_;
     std::vector<char> exchanged_;  // every rank's batches as received (kept: no reallocation per pass)
     std::vector<char> outgoing_;   // this rank's batches, packed for the exchange (kept likewise)
+    std::vector<size_t> shares_;   // with ranks: each rank's first batch, and the batch count
+    OwnTrace own_trace_;
     uint32_t mask_ = 0;
     float inv_cell_ = 1;
 };
