@@ -93,6 +93,19 @@ struct PhotonPath {
     }
 };
 
+// Sizes a buffer the grid sort overwrites whole. When it must grow, the old block is freed
+// first and nothing is copied (its records are last pass's), and 1/16 is kept spare: the
+// record count moves a little from pass to pass, and std::vector's own growth copied the
+// stale records into a block twice the size (three maps' worth alive for a moment).
+template <class T>
+void size_for_overwrite(std::vector<T>& v, size_t n) {
+    if (n > v.capacity()) {
+        std::vector<T>().swap(v);
+        v.reserve(n + n / 16);
+    }
+    v.resize(n);
+}
+
 }  // namespace
 
 uint64_t PhotonMap::bytes() const {
@@ -126,6 +139,10 @@ bool PhotonMap::trace(const RenderContext& ctx, const SectionLayout& layout, int
     tbb::parallel_for(own_first, own_end, [&](size_t b) {
         Batch& batch = batches_[b];
         batch.records.clear();
+        // A fresh batch starts with room for 4 records a path (a closed room stores about 2.5):
+        // grown by doubling from nothing, the first pass's records were copied several times
+        // and the threads took turns in the kernel for each block. Pages not written stay unmapped.
+        if (batch.records.capacity() == 0) batch.records.reserve(size_t(kBatch) * 4);
         batch.received = nullptr;
         batch.volume.clear();
         if (abandon && abandon->load(std::memory_order_relaxed)) return;
@@ -262,8 +279,8 @@ void PhotonMap::sort_into_grid(size_t total) {
         }
     }
     partition_start_[parts] = offset;
-    staged_slot_.resize(total);
-    sorted_.resize(total);
+    size_for_overwrite(staged_slot_, total);
+    size_for_overwrite(sorted_, total);
     tbb::parallel_for(size_t(0), batches_.size(), [&](size_t b) {
         Batch& batch = batches_[b];
         std::vector<uint32_t>& cursor = batch.partition_begin;  // write cursors, then the ends
@@ -275,7 +292,7 @@ void PhotonMap::sort_into_grid(size_t total) {
             sorted_[dst] = records[i];
         }
     });
-    cell_start_.resize(static_cast<size_t>(table) + 1);
+    size_for_overwrite(cell_start_, static_cast<size_t>(table) + 1);
     tbb::parallel_for(size_t(0), parts, [&](size_t part) {
         const uint32_t first_slot = static_cast<uint32_t>(part) << shift, slots = 1u << shift;
         uint32_t* start = &cell_start_[first_slot];
