@@ -93,9 +93,9 @@ void BM_PhotonPass(benchmark::State& state) {
     for (auto _ : state) {
         sl::PhotonTraceCounters counters;
         double trace_s = 0, grid_s = 0;
-        for (int i = 0; i < 4; ++i) {  // build() is these two steps: timed apart
+        for (int i = 0; i < 4; ++i) {  // build() is these two steps (the cell size known to both): timed apart
             auto t0 = Clock::now();
-            map.trace(ctx, layout, pass++, scene.render.photons_per_pass, counters, false);
+            map.trace(ctx, layout, pass++, scene.render.photons_per_pass, counters, false, nullptr, ctx.initial_radius);
             auto t1 = Clock::now();
             map.finish(ctx, ctx.initial_radius, counters, nullptr);
             trace_s += std::chrono::duration<double>(t1 - t0).count();

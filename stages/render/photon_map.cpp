@@ -100,15 +100,29 @@ struct PhotonPath {
     }
 };
 
+// Sizes a buffer the grid sort overwrites whole. When it must grow, the old block is freed
+// first and nothing is copied (its records are last pass's), and 1/16 is kept spare: the
+// record count moves a little from pass to pass, and std::vector's own growth copied the
+// stale records into a block twice the size (three maps' worth alive for a moment).
+template <class T>
+void size_for_overwrite(std::vector<T>& v, size_t n) {
+    if (n > v.capacity()) {
+        std::vector<T>().swap(v);
+        v.reserve(n + n / 16);
+    }
+    v.resize(n);
+}
+
 }  // namespace
 
 uint64_t PhotonMap::bytes() const {
     uint64_t b = sorted_.capacity() * sizeof(PhotonRecord) +
-                 (staged_slot_.capacity() + cell_start_.capacity() + partition_start_.capacity()) * sizeof(uint32_t) +
+                 (cell_start_.capacity() + partition_start_.capacity()) * sizeof(uint32_t) +
                  exchanged_.capacity() + outgoing_.capacity();
     for (const std::vector<PhotonRecord>& group : scratch_) b += group.capacity() * sizeof(PhotonRecord);
+    for (const std::vector<uint32_t>& slots : scratch_slot_) b += slots.capacity() * sizeof(uint32_t);
     for (const Batch& v : batches_)
-        b += v.records.capacity() * sizeof(PhotonRecord) + v.partition_begin.capacity() * 4 +
+        b += v.records.capacity() * sizeof(PhotonRecord) + (v.partition_begin.capacity() + v.hash.capacity()) * 4 +
              v.volume.capacity() * sizeof(VolumePhoton);
     return b;
 }
@@ -116,13 +130,15 @@ uint64_t PhotonMap::bytes() const {
 bool PhotonMap::build(const RenderContext& ctx, const SectionLayout& layout, int pass, int64_t count,
                       double cell_size, PhotonTraceCounters& counters, VolumePhotonMap* volume,
                       const std::atomic<bool>* abandon) {
-    if (!trace(ctx, layout, pass, count, counters, volume != nullptr, abandon)) return false;
+    if (!trace(ctx, layout, pass, count, counters, volume != nullptr, abandon, cell_size)) return false;
     finish(ctx, cell_size, counters, volume);
     return true;
 }
 
 bool PhotonMap::trace(const RenderContext& ctx, const SectionLayout& layout, int pass, int64_t count,
-                      PhotonTraceCounters& counters, bool with_volume, const std::atomic<bool>* abandon) {
+                      PhotonTraceCounters& counters, bool with_volume, const std::atomic<bool>* abandon,
+                      double cell_size) {
+    traced_inv_cell_ = cell_size > 0 ? inverse_cell(cell_size) : 0;
     const HomogeneousMedium* medium = ctx.medium ? &*ctx.medium : nullptr;
     const bool volume = medium && with_volume;
     const size_t nbatches = ctx.lights.has_emission() ? static_cast<size_t>((count + kBatch - 1) / kBatch) : 0;
@@ -134,13 +150,22 @@ bool PhotonMap::trace(const RenderContext& ctx, const SectionLayout& layout, int
     tbb::parallel_for(own_first, own_end, [&](size_t b) {
         Batch& batch = batches_[b];
         batch.records.clear();
+        // A fresh batch starts with room for 4 records a path (a closed room stores about 2.5):
+        // grown by doubling from nothing, the first pass's records were copied several times
+        // and the threads took turns in the kernel for each block. Pages not written stay unmapped.
+        if (batch.records.capacity() == 0) batch.records.reserve(size_t(kBatch) * 4);
         batch.received = nullptr;
         batch.volume.clear();
+        batch.hash.clear();
         if (abandon && abandon->load(std::memory_order_relaxed)) return;
         Rng rng(ctx.scene.render.seed, 2, static_cast<uint64_t>(pass), b);
         PhotonPath path{ctx, layout, batch.records, medium, volume ? &batch.volume : nullptr};
         int64_t n = std::min<int64_t>(kBatch, count - static_cast<int64_t>(b) * kBatch);
         for (int64_t i = 0; i < n; ++i) path.trace(rng);
+        if (traced_inv_cell_ > 0) {  // the batch's records are still in this core's cache
+            batch.hash.resize(batch.records.size());
+            for (size_t i = 0; i < batch.records.size(); ++i) batch.hash[i] = hash_at(batch.records[i], traced_inv_cell_);
+        }
         counters.photons.fetch_add(static_cast<uint64_t>(n), std::memory_order_relaxed);
         counters.rays.fetch_add(path.rays, std::memory_order_relaxed);
     });
@@ -164,7 +189,7 @@ bool PhotonMap::trace(const RenderContext& ctx, const SectionLayout& layout, int
 void PhotonMap::finish(const RenderContext& ctx, double cell_size, PhotonTraceCounters& counters,
                        VolumePhotonMap* volume) {
     if (!ctx.medium) volume = nullptr;
-    inv_cell_ = static_cast<float>(1.0 / std::max(cell_size, 1e-12));
+    inv_cell_ = inverse_cell(cell_size);
     size_t total = 0;
     for (const Batch& v : batches_) total += v.count();
     sort_into_grid(total);
@@ -250,7 +275,9 @@ void PhotonMap::exchange_batches(RankExchange& ex, size_t nbatches) {
 // Both steps read their source in order: a record copied straight from its batch to its final
 // place would be a random read from a map far larger than the caches, and those reads were most
 // of the sort's time. The second step works within one group (a 64th of the map), which fits in
-// a core's cache.
+// a core's cache. Each record is hashed once before the first step (by its tracing task when
+// that knew the cell size) and the first step reads only those 4 bytes to place it; the second
+// hashes the group's copy again, in cache, rather than stage a slot per record through memory.
 void PhotonMap::sort_into_grid(size_t total) {
     uint32_t table = 1u << 10;
     while (table < 2 * total && table < (1u << 30)) table <<= 1;
@@ -258,11 +285,18 @@ void PhotonMap::sort_into_grid(size_t total) {
     const int shift = std::countr_zero(table) - kPartitionBits;
     const size_t parts = size_t(1) << kPartitionBits;
 
+    // Each record's hash, once: made by the tracing task when it knew this cell size, else here.
+    const bool traced_hashes = traced_inv_cell_ == inv_cell_;
     tbb::parallel_for(size_t(0), batches_.size(), [&](size_t b) {
         Batch& batch = batches_[b];
         batch.partition_begin.assign(parts, 0);
         const PhotonRecord* records = batch.data();
-        for (size_t i = 0, n = batch.count(); i < n; ++i) ++batch.partition_begin[slot_of(records[i]) >> shift];
+        const size_t n = batch.count();
+        if (!traced_hashes || batch.received || batch.hash.size() != n) {
+            batch.hash.resize(n);
+            for (size_t i = 0; i < n; ++i) batch.hash[i] = hash_at(records[i], inv_cell_);
+        }
+        for (size_t i = 0; i < n; ++i) ++batch.partition_begin[(batch.hash[i] & mask_) >> shift];
     });
     partition_start_.assign(parts + 1, 0);
     uint32_t offset = 0;
@@ -275,37 +309,36 @@ void PhotonMap::sort_into_grid(size_t total) {
         }
     }
     partition_start_[parts] = offset;
-    staged_slot_.resize(total);
-    sorted_.resize(total);
+    size_for_overwrite(sorted_, total);
     tbb::parallel_for(size_t(0), batches_.size(), [&](size_t b) {
         Batch& batch = batches_[b];
         std::vector<uint32_t>& cursor = batch.partition_begin;  // write cursors, then the ends
         const PhotonRecord* records = batch.data();
-        for (size_t i = 0, n = batch.count(); i < n; ++i) {
-            const uint32_t slot = slot_of(records[i]);
-            const uint32_t dst = cursor[slot >> shift]++;
-            staged_slot_[dst] = slot;
-            sorted_[dst] = records[i];
-        }
+        const uint32_t* hash = batch.hash.data();
+        for (size_t i = 0, n = batch.count(); i < n; ++i) sorted_[cursor[(hash[i] & mask_) >> shift]++] = records[i];
     });
-    cell_start_.resize(static_cast<size_t>(table) + 1);
+    size_for_overwrite(cell_start_, static_cast<size_t>(table) + 1);
     tbb::parallel_for(size_t(0), parts, [&](size_t part) {
         const uint32_t first_slot = static_cast<uint32_t>(part) << shift, slots = 1u << shift;
         uint32_t* start = &cell_start_[first_slot];
         std::fill(start, start + slots, 0u);
         const uint32_t lo = partition_start_[part], hi = partition_start_[part + 1];
-        for (uint32_t i = lo; i < hi; ++i) ++start[staged_slot_[i] - first_slot];
+        // The group's records in staged order (batch after batch), and their slots, from this
+        // copy (in the core's cache: cheaper than a second array of slots through memory).
+        std::vector<PhotonRecord>& group = scratch_.local();
+        group.assign(sorted_.begin() + lo, sorted_.begin() + hi);
+        std::vector<uint32_t>& local = scratch_slot_.local();
+        local.resize(hi - lo);
+        for (uint32_t i = 0; i < hi - lo; ++i) ++start[local[i] = slot_of(group[i]) - first_slot];
         uint32_t run = lo;
         for (uint32_t s = 0; s < slots; ++s) {
             uint32_t n = start[s];
             start[s] = run;
             run += n;
         }
-        // The group's records in staged order (batch after batch), then back into the group's
-        // range with start[] as the cursor; afterwards start[s] is slot s's end, so shift it back.
-        std::vector<PhotonRecord>& group = scratch_.local();
-        group.assign(sorted_.begin() + lo, sorted_.begin() + hi);
-        for (uint32_t i = lo; i < hi; ++i) sorted_[start[staged_slot_[i] - first_slot]++] = group[i - lo];
+        // Back into the group's range with start[] as the cursor; afterwards start[s] is slot
+        // s's end, so shift it back.
+        for (uint32_t i = 0; i < hi - lo; ++i) sorted_[start[local[i]]++] = group[i];
         for (uint32_t s = slots - 1; s > 0; --s) start[s] = start[s - 1];
         start[0] = lo;
     });

@@ -4,6 +4,7 @@
 // a hash grid whose cells are as wide as the largest gather radius.
 #include <tbb/enumerable_thread_specific.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdint>
@@ -43,9 +44,12 @@ public:
     // build() in two steps: trace (this rank's batches, then, with ranks, the exchange) needs
     // no radius and touches only the batches, so it may run while a camera pass reads the grid
     // of the previous pass; finish sorts the batches into the grid (and the volume BVH). trace
-    // returns false when abandoned (nothing was exchanged then).
+    // returns false when abandoned (nothing was exchanged then). When the grid's cell size is
+    // already known, passing it lets each tracing task hash its own records while they are
+    // still in its cache (finish then need not read them for that); finish must get the same size.
     bool trace(const RenderContext& ctx, const SectionLayout& layout, int pass, int64_t count,
-               PhotonTraceCounters& counters, bool with_volume, const std::atomic<bool>* abandon = nullptr);
+               PhotonTraceCounters& counters, bool with_volume, const std::atomic<bool>* abandon = nullptr,
+               double cell_size = 0);
     void finish(const RenderContext& ctx, double cell_size, PhotonTraceCounters& counters, VolumePhotonMap* volume);
 
     size_t size() const { return sorted_.size(); }
@@ -81,6 +85,12 @@ private:
                static_cast<uint32_t>(iz) * 83492791u;
     }
     int32_t cell(float v) const { return static_cast<int32_t>(std::floor(v * inv_cell_)); }
+    static float inverse_cell(double cell_size) { return static_cast<float>(1.0 / std::max(cell_size, 1e-12)); }
+    // A record's cell hash before the table mask: slot_of is this & mask_.
+    uint32_t hash_at(const PhotonRecord& p, float inv_cell) const {
+        auto c = [inv_cell](float v) { return static_cast<int32_t>(std::floor(v * inv_cell)); };
+        return hash_cell(c(p.x), c(p.y), c(p.z));
+    }
     void sort_into_grid(size_t total);
     // The first batch of rank `rank`'s share (set_batch_shares, else first_batch).
     size_t share_begin(size_t nbatches, int rank, int ranks) const {
@@ -101,15 +111,17 @@ private:
         const PhotonRecord* data() const { return received ? received : records.data(); }
         size_t count() const { return received ? received_count : records.size(); }
         std::vector<uint32_t> partition_begin;  // where this batch's records of each partition go
+        std::vector<uint32_t> hash;  // per record: hash_at(record, inv_cell_), for the grid sort
         std::vector<VolumePhoton> volume;  // medium scattering events (with a medium only)
     };
     uint32_t slot_of(const PhotonRecord& p) const { return hash_cell(cell(p.x), cell(p.y), cell(p.z)) & mask_; }
 
     std::vector<Batch> batches_;         // kept between passes: no reallocation per photon
-    std::vector<uint32_t> staged_slot_;  // per record, grouped by partition (batch order kept): its hash slot
-    // Per thread, one partition's records while they are sorted back into place (kept: no
-    // reallocation per pass; about a 64th of a pass's records each).
+    // Per thread, one partition's records while they are sorted back into place, and their
+    // slots (kept: no reallocation per pass; about a 64th of a pass's records each).
     tbb::enumerable_thread_specific<std::vector<PhotonRecord>> scratch_;
+    tbb::enumerable_thread_specific<std::vector<uint32_t>> scratch_slot_;
+    float traced_inv_cell_ = 0;  // the cell size trace() hashed this rank's batches for (0: none)
     std::vector<PhotonRecord> sorted_;  // records grouped by hash slot: the grid's cells
     std::vector<uint32_t> cell_start_;  // hash slot -> first record (size table + 1)
     std::vector<uint32_t> partition_start_;
