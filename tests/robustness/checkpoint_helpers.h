@@ -41,6 +41,15 @@ inline void expect_same_exrs(const std::string& a, const std::string& b, int fra
     EXPECT_EQ(read_exr(a + "/steady.exr").rgb, read_exr(b + "/steady.exr").rgb) << a;
 }
 
+// `slowlight render` with these settings, its frames in DIR/SUB and its video in DIR/SUB.mkv.
+inline std::vector<std::string> render_into(const std::string& dir, const std::string& sub,
+                                            const std::vector<std::string>& settings) {
+    std::vector<std::string> a{"render"};
+    a.insert(a.end(), settings.begin(), settings.end());
+    a.insert(a.end(), {"--exr-dir", dir + "/" + sub, "-o", dir + "/" + sub + ".mkv", "--no-progress"});
+    return a;
+}
+
 inline std::vector<std::string> with(std::vector<std::string> args, const std::vector<std::string>& more) {
     args.insert(args.end(), more.begin(), more.end());
     return args;

@@ -16,8 +16,8 @@ namespace {
 namespace fs = std::filesystem;
 
 std::vector<std::string> three_sections(const std::string& dir, const std::string& sub) {
-    return {"render", "--width", "40", "--height", "30", "--frames", "6", "--passes", "6", "--photons", "8000",
-            "--sections", "3", "--exr-dir", dir + "/" + sub, "-o", dir + "/" + sub + ".mkv", "--no-progress"};
+    return test::render_into(dir, sub, {"--width", "40", "--height", "30", "--frames", "6", "--passes", "6",
+                                        "--photons", "8000", "--sections", "3"});
 }
 
 TEST(CarriedSections, ResumedFromTheFramesOnDiskGivesTheSameRender) {

@@ -21,8 +21,8 @@ namespace {
 namespace fs = std::filesystem;
 
 std::vector<std::string> long_render(const std::string& dir, const std::string& sub) {
-    return {"render", "--width", "48", "--height", "48", "--passes", "40", "--photons", "15000", "--frames", "8",
-            "--sections", "4", "--exr-dir", dir + "/" + sub, "-o", dir + "/" + sub + ".mkv", "--no-progress"};
+    return test::render_into(dir, sub, {"--width", "48", "--height", "48", "--passes", "40", "--photons", "15000",
+                                        "--frames", "8", "--sections", "4"});
 }
 
 // Waits until `path` exists (the render has finished its first section), at most 120 s.
