@@ -52,6 +52,11 @@ SrgbByteTable::SrgbByteTable(double exposure) : exposure_(exposure) {
         at_[b] = hi;
     }
     at_[256] = std::numeric_limits<uint32_t>::max();  // above every sanitised value
+    // Two thresholds in one bin, the first past the bin's start: a value at the second would
+    // start below both.
+    for (int b = 2; b < 256; ++b)
+        if (at_[b - 1] >> kGuessShift == at_[b] >> kGuessShift && (at_[b - 1] & ((1u << kGuessShift) - 1)) != 0)
+            one_step_ = false;
     // guess_[i]: how many thresholds lie at or below the bin's first float, i << kGuessShift.
     guess_.resize((kInfBits >> kGuessShift) + 1);
     uint32_t b = 0;

@@ -24,17 +24,23 @@ public:
     struct View {
         const uint32_t* at;    // at[b]: the smallest float bits whose byte is b or more; at[256] a sentinel
         const uint8_t* guess;  // by bits >> kGuessShift: the byte of the bin's first float
-        uint8_t operator()(float x) const {
+        bool one_step;         // no bin holds two thresholds past its first float
+        // kOneStep: only when one_step (then without a loop or a branch).
+        template <bool kOneStep>
+        uint8_t byte(float x) const {
             uint32_t bits = std::bit_cast<uint32_t>(x);
             // Negative values (sign bit set) and NaN (above +inf) are 0, as in the formula.
             bits = bits > kInfBits ? 0u : bits;
             uint32_t b = guess[bits >> kGuessShift];
-            b += bits >= at[b + 1];  // a bin holds at most one threshold (1/128 of an octave
-            while (bits >= at[b + 1]) ++b;  // against at least 1/106 per byte): never loops
+            b += bits >= at[b + 1];
+            if constexpr (!kOneStep)
+                while (bits >= at[b + 1]) ++b;
             return static_cast<uint8_t>(b);
         }
     };
-    View view() const { return {at_.data(), guess_.data()}; }
+    // A bin is 1/128 of an octave and a byte at least 1/106 of one, so one step is the rule;
+    // only extreme exposures, where many bytes begin among the smallest floats, need more.
+    View view() const { return {at_.data(), guess_.data(), one_step_}; }
 
     // For every byte b, the smallest linear value in [0, 1] that rounds to it under the sRGB
     // formula; [256] is infinity.
@@ -47,6 +53,7 @@ private:
     double exposure_;
     std::array<uint32_t, 257> at_{};
     std::vector<uint8_t> guess_;
+    bool one_step_ = true;
 };
 
 }  // namespace sl

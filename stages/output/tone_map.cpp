@@ -75,7 +75,7 @@ void tone_map_srgb8(const float* rgb, int w, int h, double exposure, uint8_t* ou
         const SrgbByteTable::View bytes = table->view();
         tbb::parallel_for(tbb::blocked_range<size_t>(0, n, kGrain), [=](const tbb::blocked_range<size_t>& r) {
             for (size_t i = r.begin(); i != r.end(); ++i)
-                out_rgb8[i] = bytes(static_cast<float>(tone_curve(curve, exposure * rgb[i])));
+                out_rgb8[i] = bytes.byte<false>(static_cast<float>(tone_curve(curve, exposure * rgb[i])));
         });
         return;
     }
@@ -94,7 +94,10 @@ void tone_map_srgb8(const float* rgb, int w, int h, double exposure, uint8_t* ou
     const std::shared_ptr<const SrgbByteTable> table = table_for(exposure);
     const SrgbByteTable::View bytes = table->view();  // plain pointers, copied into the lambda
     tbb::parallel_for(tbb::blocked_range<size_t>(0, n, kGrain), [=](const tbb::blocked_range<size_t>& r) {
-        for (size_t i = r.begin(); i != r.end(); ++i) out_rgb8[i] = bytes(rgb[i]);
+        if (bytes.one_step)
+            for (size_t i = r.begin(); i != r.end(); ++i) out_rgb8[i] = bytes.byte<true>(rgb[i]);
+        else
+            for (size_t i = r.begin(); i != r.end(); ++i) out_rgb8[i] = bytes.byte<false>(rgb[i]);
     });
 }
 

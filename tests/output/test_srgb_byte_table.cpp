@@ -1,6 +1,7 @@
 // The bytes found from a value's float bits (srgb_byte_table.h) are the formula's own at any
 // exposure: round(255 * oetf(min(exposure * x, 1))), the product in double, checked value by
 // value against the formula written out here, at and around every byte's threshold.
+#include "stages/output/srgb_byte_table.h"
 #include "stages/output/tone_map.h"
 
 #include <gtest/gtest.h>
@@ -72,8 +73,12 @@ int wrong_bytes(double exposure, sl::ToneCurve curve) {
 }  // namespace
 
 TEST(SrgbByteTable, EveryByteIsTheFormulasOwnAtAnyExposure) {
+    // Both loops are exercised: one step from the guess at ordinary exposures, more at extremes.
+    EXPECT_TRUE(sl::SrgbByteTable(2.942).view().one_step);
+    EXPECT_TRUE(sl::SrgbByteTable(1e-3).view().one_step);
+    EXPECT_FALSE(sl::SrgbByteTable(1e40).view().one_step);  // bytes among the subnormals
     // The demo's exposure, simple and awkward factors, and extremes where many thresholds meet.
-    for (double exposure : {2.942, 1.0, 0.37, 1.0 / 3.0, 1e-3, 7.5e4, 1e-30, 1e30, 3e-300})
+    for (double exposure : {2.942, 1.0, 0.37, 1.0 / 3.0, 1e-3, 7.5e4, 1e-30, 1e30, 1e40, 3e-300})
         EXPECT_EQ(wrong_bytes(exposure, sl::ToneCurve::Linear), 0) << "exposure " << exposure;
 }
 
