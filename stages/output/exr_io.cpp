@@ -67,7 +67,7 @@ void write_exr(const std::string& path, int w, int h, const float* rgb,
         } else {
             fb = interleaved(Imf::FLOAT, rgb, header.dataWindow());
         }
-        // OpenEXR writes into large blocks (exr_file_stream.h); the file is closed, and every
+        // OpenEXR writes into 64 KiB blocks (exr_file_stream.h); the file is closed, and every
         // byte written or the failure reported, before the rename.
         ExrFileStream file(temp);
         {
