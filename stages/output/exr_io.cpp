@@ -18,6 +18,7 @@
 
 #include "foundation/errors.h"
 #include "stages/output/atomic_file.h"
+#include "stages/output/exr_file_stream.h"
 #include "stages/output/exr_header_scan.h"
 
 namespace sl {
@@ -66,12 +67,15 @@ void write_exr(const std::string& path, int w, int h, const float* rgb,
         } else {
             fb = interleaved(Imf::FLOAT, rgb, header.dataWindow());
         }
-        // Scoped so the file is closed (fully flushed) before the rename.
+        // OpenEXR writes into 64 KiB blocks (exr_file_stream.h); the file is closed, and every
+        // byte written or the failure reported, before the rename.
+        ExrFileStream file(temp);
         {
-            Imf::OutputFile out(temp.c_str(), header);
+            Imf::OutputFile out(file, header);
             out.setFrameBuffer(fb);
             out.writePixels(h);
-        }
+        }  // (here OpenEXR writes the table of line offsets)
+        file.close();
     } catch (const std::exception& e) {
         discard_file(temp);
         fail("cannot write EXR", path, e);

@@ -4,23 +4,20 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <array>
-#include <bit>
-#include <limits>
 #include <cmath>
 #include <cstddef>
+#include <limits>
+#include <memory>
+#include <mutex>
 #include <vector>
+
+#include "stages/output/srgb_byte_table.h"
 
 namespace sl {
 
 namespace {
 
 double luminance(const float* p) { return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]; }
-
-// IEC 61966-2-1 encoding of a value already in [0, 1].
-double srgb_oetf(double v) {
-    return v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055;
-}
 
 }  // namespace
 
@@ -46,39 +43,14 @@ double exposure_from_steady(const float* rgb, int w, int h) {
 
 namespace {
 
-// For every byte b, the smallest linear value that rounds to it under the sRGB formula.
-const std::array<double, 257>& byte_lower_bounds() {
-    static const std::array<double, 257> lower = [] {
-        std::array<double, 257> t{};
-        for (int b = 1; b < 256; ++b) {
-            double lo = 0, hi = 1;  // smallest c with round(255 * oetf(c)) >= b
-            for (int it = 0; it < 60; ++it) {
-                double mid = 0.5 * (lo + hi);
-                (std::lround(255.0 * srgb_oetf(mid)) >= b ? hi : lo) = mid;
-            }
-            t[b] = hi;
-        }
-        t[256] = std::numeric_limits<double>::infinity();  // a sentinel: no byte above 255
-        return t;
-    }();
-    return lower;
-}
-
-// A first guess indexed by a float's exponent and top 7 mantissa bits (bins of 1/128 relative
-// width, at most about half a byte wide on the curve): the byte of the bin's lowest value.
-constexpr int kGuessShift = 16;
-const std::vector<uint8_t>& byte_guess() {
-    static const std::vector<uint8_t> guess = [] {
-        const auto& lower = byte_lower_bounds();
-        const uint32_t last = std::bit_cast<uint32_t>(1.0f) >> kGuessShift;
-        std::vector<uint8_t> g(last + 1);
-        for (uint32_t i = 0; i <= last; ++i) {
-            const double c = std::bit_cast<float>(i << kGuessShift);
-            g[i] = uint8_t(std::upper_bound(lower.begin() + 1, lower.begin() + 256, c) - lower.begin() - 1);
-        }
-        return g;
-    }();
-    return guess;
+// The last exposure's table, shared: frames almost always share one exposure (a table costs
+// ~0.1 ms to build), and a caller keeps its table alive while another exposure replaces it.
+std::shared_ptr<const SrgbByteTable> table_for(double exposure) {
+    static std::mutex mutex;
+    static std::shared_ptr<const SrgbByteTable> last;
+    std::lock_guard<std::mutex> lock(mutex);
+    if (!last || last->exposure() != exposure) last = std::make_shared<const SrgbByteTable>(exposure);
+    return last;
 }
 
 }  // namespace
@@ -94,40 +66,38 @@ double tone_curve(ToneCurve curve, double v) {
 }
 
 void tone_map_srgb8(const float* rgb, int w, int h, double exposure, uint8_t* out_rgb8, ToneCurve curve) {
+    const size_t n = size_t(w) * size_t(h) * 3;
+    constexpr size_t kGrain = 1 << 14;
     if (curve != ToneCurve::Linear) {
-        // The curve first (a log or a rational per value), then the exact sRGB bytes below.
-        const size_t n = size_t(w) * size_t(h) * 3;
-        std::vector<float> curved(n);
-        tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1 << 14), [&](const tbb::blocked_range<size_t>& r) {
+        // The curve first (a log or a rational per value, rounded to float), then its bytes at
+        // exposure 1.
+        const std::shared_ptr<const SrgbByteTable> table = table_for(1.0);
+        const SrgbByteTable::View bytes = table->view();
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, n, kGrain), [=](const tbb::blocked_range<size_t>& r) {
             for (size_t i = r.begin(); i != r.end(); ++i)
-                curved[i] = static_cast<float>(tone_curve(curve, exposure * rgb[i]));
+                out_rgb8[i] = bytes.byte<false>(static_cast<float>(tone_curve(curve, exposure * rgb[i])));
         });
-        tone_map_srgb8(curved.data(), w, h, 1.0, out_rgb8, ToneCurve::Linear);
         return;
     }
-    // The sRGB curve without a pow or a search per value: a table guess from the value's float
-    // bits, then a step or two against the exact boundaries (in double), so every byte is the
-    // formula's own. (A binary search per value cost ~30 ms a frame at 512x512.)
-    // Plain locals: stores through the uint8_t output may alias anything the lambda reads through
-    // a reference, which would make the compiler reload it for every value.
-    const double* const lower = byte_lower_bounds().data();
-    const uint8_t* const guess = byte_guess().data();
-    const size_t n = size_t(w) * size_t(h) * 3;
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1 << 14), [=](const tbb::blocked_range<size_t>& r) {
-        for (size_t i = r.begin(); i != r.end(); ++i) {
+    if (!(exposure > 0 && exposure < std::numeric_limits<double>::infinity())) {
+        // No table for these (exposure * x is not monotone in x): the formula's bounds, searched.
+        const auto& lower = SrgbByteTable::lower_bounds();
+        for (size_t i = 0; i < n; ++i) {
             const double v = exposure * rgb[i];
-            // Written so that NaN fails the first test and lands on 0.
-            const double c = v > 0 ? std::min(v, 1.0) : 0.0;
-            // c rounded down to float (one ulp back if the cast went up; c >= 0): its bin's guess
-            // is then at or below the answer.
-            const float cf = static_cast<float>(c);
-            const uint32_t bits = std::bit_cast<uint32_t>(cf) - (cf > c ? 1u : 0u);
-            int b = guess[bits >> kGuessShift];
-            b += c >= lower[b + 1];  // a bin spans at most one boundary: branch-free steps,
-            b += c >= lower[b + 1];  // and a loop that in practice never runs
-            while (c >= lower[b + 1]) ++b;
-            out_rgb8[i] = uint8_t(b);
+            const double c = v > 0 ? std::min(v, 1.0) : 0.0;  // NaN lands on 0
+            out_rgb8[i] = uint8_t(std::upper_bound(lower.begin() + 1, lower.begin() + 256, c) - lower.begin() - 1);
         }
+        return;
+    }
+    // The bytes from the values' float bits (srgb_byte_table.h): a 256x256 frame took ~1 ms
+    // with a double product, a float guess and double compares per value.
+    const std::shared_ptr<const SrgbByteTable> table = table_for(exposure);
+    const SrgbByteTable::View bytes = table->view();  // plain pointers, copied into the lambda
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, kGrain), [=](const tbb::blocked_range<size_t>& r) {
+        if (bytes.one_step)
+            for (size_t i = r.begin(); i != r.end(); ++i) out_rgb8[i] = bytes.byte<true>(rgb[i]);
+        else
+            for (size_t i = r.begin(); i != r.end(); ++i) out_rgb8[i] = bytes.byte<false>(rgb[i]);
     });
 }
 

@@ -1,6 +1,7 @@
 #include "stages/output/exr_io.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <vector>
@@ -73,4 +74,21 @@ TEST(ExrIo, MissingDirectoryIsRuntimeFailure) {
 TEST(ExrIo, ReadingGarbageIsRuntimeFailure) {
     sl::test::TempDir dir;
     EXPECT_THROW(sl::read_exr(dir.file("absent.exr")), sl::RuntimeFailure);
+}
+
+TEST(ExrIo, FullDiskIsRuntimeFailure) {
+    // /dev/full takes every write with "no space left": the writer must say so, on one line,
+    // not report success (its bytes go out in large blocks, and at the close).
+    if (access("/dev/full", W_OK) != 0) GTEST_SKIP() << "no writable /dev/full";
+    for (int side : {64, 600}) {  // within one block, and several blocks
+        const auto rgb = test_image(side, side);
+        try {
+            sl::write_exr("/dev/full", side, side, rgb.data());
+            ADD_FAILURE() << "expected RuntimeFailure";
+        } catch (const sl::RuntimeFailure& e) {
+            EXPECT_NE(std::string(e.what()).find("/dev/full"), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find("space"), std::string::npos) << e.what();
+            EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
+        }
+    }
 }
