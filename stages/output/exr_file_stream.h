@@ -31,8 +31,7 @@ private:
 
     int fd_ = -1;
     std::string path_;
-    char* buffer_ = nullptr;  // this thread's block (kept between files: no page faults per frame)
-    std::unique_ptr<char[]> own_block_;  // only when another file is open on the same thread
+    std::unique_ptr<char[]> buffer_;  // one block
     uint64_t buffer_at_ = 0;  // file offset of buffer_[0]
     uint64_t buffered_ = 0;   // bytes in buffer_
     uint64_t pos_ = 0;        // where the next write() goes
