@@ -114,7 +114,7 @@ private:
         std::vector<uint32_t> hash;  // per record: hash_at(record, inv_cell_), for the grid sort
         std::vector<VolumePhoton> volume;  // medium scattering events (with a medium only)
     };
-    uint32_t slot_of(const PhotonRecord& p) const { return hash_cell(cell(p.x), cell(p.y), cell(p.z)) & mask_; }
+    uint32_t slot_of(const PhotonRecord& p) const { return hash_at(p, inv_cell_) & mask_; }
 
     std::vector<Batch> batches_;         // kept between passes: no reallocation per photon
     // Per thread, one partition's records while they are sorted back into place, and their
