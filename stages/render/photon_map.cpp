@@ -192,7 +192,7 @@ void PhotonMap::finish(const RenderContext& ctx, double cell_size, PhotonTraceCo
     inv_cell_ = inverse_cell(cell_size);
     size_t total = 0;
     for (const Batch& v : batches_) total += v.count();
-    sort_into_grid(total);
+    sort_into_grid(total, ctx.exchange);
     if (volume) {
         std::vector<const std::vector<VolumePhoton>*> parts;
         parts.reserve(batches_.size());
@@ -278,7 +278,15 @@ void PhotonMap::exchange_batches(RankExchange& ex, size_t nbatches) {
 // a core's cache. Each record is hashed once before the first step (by its tracing task when
 // that knew the cell size) and the first step reads only those 4 bytes to place it; the second
 // hashes the group's copy again, in cache, rather than stage a slot per record through memory.
-void PhotonMap::sort_into_grid(size_t total) {
+//
+// With ranks, every rank holds every record (exchange_batches) but sorts only a contiguous run
+// of the partitions, about 1/N of the records (the runs are cut by record count, from the
+// partition sizes every rank computes alike); then one in-place all-gather of the sorted records
+// and one of the matching cell_start_ entries (absolute indices) give every rank the grid one
+// process builds. Every rank still hashes every record (4 bytes a record, read in order): a
+// rank must know where each batch's records go, and the cell size is known only now, after the
+// photons were exchanged beside the camera pass.
+void PhotonMap::sort_into_grid(size_t total, RankExchange* ex) {
     uint32_t table = 1u << 10;
     while (table < 2 * total && table < (1u << 30)) table <<= 1;
     mask_ = table - 1;
@@ -309,16 +317,44 @@ void PhotonMap::sort_into_grid(size_t total) {
         }
     }
     partition_start_[parts] = offset;
+    // This rank's partitions [own_first, own_end): all of them in one process.
+    const int ranks = ex ? ex->ranks() : 1;
+    std::vector<size_t> part_bound(static_cast<size_t>(ranks) + 1, parts);
+    part_bound[0] = 0;
+    for (int r = 1; r < ranks; ++r) {  // the first partition at or past the rank's share of the records
+        size_t p = part_bound[static_cast<size_t>(r) - 1];
+        while (p < parts && static_cast<uint64_t>(partition_start_[p]) * static_cast<uint64_t>(ranks) <
+                                static_cast<uint64_t>(total) * static_cast<uint64_t>(r))
+            ++p;
+        part_bound[static_cast<size_t>(r)] = p;
+    }
+    const int me = ex ? ex->rank() : 0;
+    const size_t own_first = part_bound[static_cast<size_t>(me)], own_end = part_bound[static_cast<size_t>(me) + 1];
     size_for_overwrite(sorted_, total);
     tbb::parallel_for(size_t(0), batches_.size(), [&](size_t b) {
         Batch& batch = batches_[b];
         std::vector<uint32_t>& cursor = batch.partition_begin;  // write cursors, then the ends
         const PhotonRecord* records = batch.data();
         const uint32_t* hash = batch.hash.data();
-        for (size_t i = 0, n = batch.count(); i < n; ++i) sorted_[cursor[(hash[i] & mask_) >> shift]++] = records[i];
+        const size_t n = batch.count();
+        if (ranks == 1) {
+            for (size_t i = 0; i < n; ++i) sorted_[cursor[(hash[i] & mask_) >> shift]++] = records[i];
+            return;
+        }
+        // Only this rank's partitions; the others' records go to a spare record, without a
+        // branch (which of the two is a coin toss per record).
+        PhotonRecord spare;
+        PhotonRecord* grid = sorted_.data();
+        for (size_t i = 0; i < n; ++i) {
+            const uint32_t part = (hash[i] & mask_) >> shift;
+            const uint32_t own = part - own_first < own_end - own_first ? 1u : 0u;
+            PhotonRecord* to = own ? grid + cursor[part] : &spare;
+            *to = records[i];
+            cursor[part] += own;
+        }
     });
     size_for_overwrite(cell_start_, static_cast<size_t>(table) + 1);
-    tbb::parallel_for(size_t(0), parts, [&](size_t part) {
+    tbb::parallel_for(own_first, own_end, [&](size_t part) {
         const uint32_t first_slot = static_cast<uint32_t>(part) << shift, slots = 1u << shift;
         uint32_t* start = &cell_start_[first_slot];
         std::fill(start, start + slots, 0u);
@@ -343,6 +379,13 @@ void PhotonMap::sort_into_grid(size_t total) {
         start[0] = lo;
     });
     cell_start_[table] = static_cast<uint32_t>(total);
+    if (ranks > 1) {
+        std::vector<uint64_t> bounds(part_bound.size());
+        for (size_t r = 0; r < bounds.size(); ++r) bounds[r] = partition_start_[part_bound[r]];
+        ex->all_gather_in_place(Channel::Passes, sorted_.data(), sizeof(PhotonRecord), bounds);
+        for (size_t r = 0; r < bounds.size(); ++r) bounds[r] = static_cast<uint64_t>(part_bound[r]) << shift;
+        ex->all_gather_in_place(Channel::Passes, cell_start_.data(), sizeof(uint32_t), bounds);
+    }
 }
 
 }  // namespace sl

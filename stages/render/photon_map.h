@@ -91,7 +91,7 @@ private:
         auto c = [inv_cell](float v) { return static_cast<int32_t>(std::floor(v * inv_cell)); };
         return hash_cell(c(p.x), c(p.y), c(p.z));
     }
-    void sort_into_grid(size_t total);
+    void sort_into_grid(size_t total, RankExchange* ex);  // ex: with ranks, each sorts a share
     // The first batch of rank `rank`'s share (set_batch_shares, else first_batch).
     size_t share_begin(size_t nbatches, int rank, int ranks) const {
         return shares_.size() == static_cast<size_t>(ranks) + 1 && shares_.back() == nbatches
