@@ -118,7 +118,7 @@ void size_for_overwrite(std::vector<T>& v, size_t n) {
 uint64_t PhotonMap::bytes() const {
     uint64_t b = sorted_.capacity() * sizeof(PhotonRecord) +
                  (cell_start_.capacity() + partition_start_.capacity()) * sizeof(uint32_t) +
-                 exchanged_.capacity() + outgoing_.capacity();
+                 exchanged_.capacity();
     for (const std::vector<PhotonRecord>& group : scratch_) b += group.capacity() * sizeof(PhotonRecord);
     for (const std::vector<uint32_t>& slots : scratch_slot_) b += slots.capacity() * sizeof(uint32_t);
     for (const Batch& v : batches_)
@@ -204,30 +204,37 @@ void PhotonMap::finish(const RenderContext& ctx, double cell_size, PhotonTraceCo
 // One all-gather per pass. A rank's message: per own batch its record and volume-photon counts
 // (two uint32), then the records, then the volume photons, batch after batch. Unpacked in
 // batch order, every rank ends with the same batches, hence the same grid and the same BVH.
+// The message sizes go first (one small reduction), so that each rank packs its batches
+// straight into its place in the gathered buffer and the all-gather runs in place: no copy of
+// a rank's own message, and the buffer is kept between passes (no fresh pages to fault in).
 void PhotonMap::exchange_batches(RankExchange& ex, size_t nbatches) {
     const int n = ex.ranks(), me = ex.rank();
     const size_t first = share_begin(nbatches, me, n), end = share_begin(nbatches, me + 1, n);
-    std::vector<char>& mine = outgoing_;  // kept between passes: no fresh pages to fault in per pass
+    static_assert(sizeof(PhotonRecord) % 8 == 0 && sizeof(VolumePhoton) % 8 == 0, "messages in 8-byte units");
+    std::vector<uint64_t> counts(static_cast<size_t>(n), 0);  // bytes, multiples of 8
+    uint64_t& bytes = counts[static_cast<size_t>(me)];
+    bytes = (end - first) * 2 * sizeof(uint32_t);
+    for (size_t b = first; b < end; ++b)
+        bytes += batches_[b].records.size() * sizeof(PhotonRecord) + batches_[b].volume.size() * sizeof(VolumePhoton);
+    ex.sum(Channel::Photons, counts.data(), n);
+    std::vector<uint64_t> bounds(static_cast<size_t>(n) + 1, 0);  // in 8-byte units
+    for (size_t r = 0; r < counts.size(); ++r) bounds[r + 1] = bounds[r] + counts[r] / 8;
+    size_for_overwrite(exchanged_, bounds.back() * 8);
     {
-        size_t bytes = (end - first) * 2 * sizeof(uint32_t);
-        for (size_t b = first; b < end; ++b)
-            bytes += batches_[b].records.size() * sizeof(PhotonRecord) + batches_[b].volume.size() * sizeof(VolumePhoton);
-        mine.resize(bytes);
-        char* at = mine.data();
+        char* at = exchanged_.data() + bounds[static_cast<size_t>(me)] * 8;
         auto put = [&](const void* src, size_t len) {
             if (len) std::memcpy(at, src, len);
             at += len;
         };
         for (size_t b = first; b < end; ++b) {
-            const uint32_t counts[2] = {static_cast<uint32_t>(batches_[b].records.size()),
-                                        static_cast<uint32_t>(batches_[b].volume.size())};
-            put(counts, sizeof counts);
+            const uint32_t c[2] = {static_cast<uint32_t>(batches_[b].records.size()),
+                                   static_cast<uint32_t>(batches_[b].volume.size())};
+            put(c, sizeof c);
         }
         for (size_t b = first; b < end; ++b) put(batches_[b].records.data(), batches_[b].records.size() * sizeof(PhotonRecord));
         for (size_t b = first; b < end; ++b) put(batches_[b].volume.data(), batches_[b].volume.size() * sizeof(VolumePhoton));
     }
-    std::vector<uint64_t> counts;
-    ex.all_gather(Channel::Photons, mine.data(), mine.size(), exchanged_, counts);
+    ex.all_gather_in_place(Channel::Photons, exchanged_.data(), 8, bounds);
     // Where each other rank's batch starts in the message (a cheap scan). Its records are then
     // sorted from there, in place; its volume photons are copied into the batch (in parallel:
     // every rank makes these copies, so they must not be one thread's work).

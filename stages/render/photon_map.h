@@ -125,8 +125,7 @@ private:
     std::vector<PhotonRecord> sorted_;  // records grouped by hash slot: the grid's cells
     std::vector<uint32_t> cell_start_;  // hash slot -> first record (size table + 1)
     std::vector<uint32_t> partition_start_;
-    std::vector<char> exchanged_;  // every rank's batches as received (kept: no reallocation per pass)
-    std::vector<char> outgoing_;   // this rank's batches, packed for the exchange (kept likewise)
+    std::vector<char> exchanged_;  // every rank's batches, this rank's packed in place (kept: no reallocation per pass)
     std::vector<size_t> shares_;   // with ranks: each rank's first batch, and the batch count
     OwnTrace own_trace_;
     uint32_t mask_ = 0;
