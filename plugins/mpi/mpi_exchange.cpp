@@ -29,6 +29,15 @@ public:
             check(MPI_Comm_dup(MPI_COMM_WORLD, &c), "MPI_Comm_dup");
             MPI_Comm_set_errhandler(c, MPI_ERRORS_RETURN);
         }
+        MPI_Comm node;  // the ranks that share this rank's memory
+        check(MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node),
+              "MPI_Comm_split_type");
+        int node_size = 0;
+        MPI_Comm_size(node, &node_size);
+        MPI_Comm_free(&node);
+        int local = node_size == size_ ? 1 : 0, all_local = 0;  // the same answer on every rank
+        check(MPI_Allreduce(&local, &all_local, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD), "MPI_Allreduce");
+        one_node = all_local != 0;
     }
     ~MpiExchange() override {
         for (MPI_Comm& c : comm_) MPI_Comm_free(&c);

@@ -286,13 +286,15 @@ void PhotonMap::exchange_batches(RankExchange& ex, size_t nbatches) {
 // that knew the cell size) and the first step reads only those 4 bytes to place it; the second
 // hashes the group's copy again, in cache, rather than stage a slot per record through memory.
 //
-// With ranks, every rank holds every record (exchange_batches) but sorts only a contiguous run
-// of the partitions, about 1/N of the records (the runs are cut by record count, from the
-// partition sizes every rank computes alike); then one in-place all-gather of the sorted records
-// and one of the matching cell_start_ entries (absolute indices) give every rank the grid one
-// process builds. Every rank still hashes every record (4 bytes a record, read in order): a
-// rank must know where each batch's records go, and the cell size is known only now, after the
-// photons were exchanged beside the camera pass.
+// With ranks on one machine, every rank holds every record (exchange_batches) but sorts only a
+// contiguous run of the partitions, about 1/N of the records (the runs are cut by record count,
+// from the partition sizes every rank computes alike); then one in-place all-gather of the
+// sorted records and one of the matching cell_start_ entries (absolute indices) give every rank
+// the grid one process builds. Every rank still hashes every record (read in order): a rank must
+// know where each batch's records go, and the cell size is known only now, after the photons
+// were exchanged beside the camera pass. Over shared memory the second all-gather costs less
+// than the sort it divides; over a network it would not (docs/distributed.md), so ranks on
+// several machines each sort the whole map, as one process does.
 void PhotonMap::sort_into_grid(size_t total, RankExchange* ex) {
     uint32_t table = 1u << 10;
     while (table < 2 * total && table < (1u << 30)) table <<= 1;
@@ -324,8 +326,9 @@ void PhotonMap::sort_into_grid(size_t total, RankExchange* ex) {
         }
     }
     partition_start_[parts] = offset;
-    // This rank's partitions [own_first, own_end): all of them in one process.
-    const int ranks = ex ? ex->ranks() : 1;
+    // This rank's partitions [own_first, own_end): all of them in one process, and with ranks
+    // on several machines (where sending the sorted records costs more than sorting them).
+    const int ranks = ex && ex->one_node ? ex->ranks() : 1;
     std::vector<size_t> part_bound(static_cast<size_t>(ranks) + 1, parts);
     part_bound[0] = 0;
     for (int r = 1; r < ranks; ++r) {  // the first partition at or past the rank's share of the records
@@ -335,7 +338,7 @@ void PhotonMap::sort_into_grid(size_t total, RankExchange* ex) {
             ++p;
         part_bound[static_cast<size_t>(r)] = p;
     }
-    const int me = ex ? ex->rank() : 0;
+    const int me = ranks > 1 ? ex->rank() : 0;
     const size_t own_first = part_bound[static_cast<size_t>(me)], own_end = part_bound[static_cast<size_t>(me) + 1];
     size_for_overwrite(sorted_, total);
     tbb::parallel_for(size_t(0), batches_.size(), [&](size_t b) {

@@ -77,6 +77,11 @@ public:
     // Ends every rank of the job at once (after this rank printed why).
     [[noreturn]] virtual void abort(int code) = 0;
 
+    // Whether every rank runs on one machine (shared memory): there, moving bytes between ranks
+    // costs about what copying them costs, and the ranks divide the photon grid's sort among
+    // themselves and exchange the sorted parts; across a network they each sort it whole.
+    bool one_node = false;
+
     // Payload bytes this rank sent and received (rank 0's own share excluded), per channel.
     uint64_t sent[kChannels] = {}, received[kChannels] = {};
     uint64_t collectives[kChannels] = {};
