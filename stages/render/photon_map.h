@@ -105,7 +105,7 @@ private:
     struct Batch {
         std::vector<PhotonRecord> records;  // traced by this process
         // Or, with ranks, another rank's records, read in place in the exchange buffer (every
-        // rank sorts every record: a copy less is work that does not shrink with the ranks).
+        // rank reads every record for the sort: a copy less is work that does not shrink with N).
         const PhotonRecord* received = nullptr;
         uint32_t received_count = 0;
         const PhotonRecord* data() const { return received ? received : records.data(); }
