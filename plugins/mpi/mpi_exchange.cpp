@@ -29,6 +29,15 @@ public:
             check(MPI_Comm_dup(MPI_COMM_WORLD, &c), "MPI_Comm_dup");
             MPI_Comm_set_errhandler(c, MPI_ERRORS_RETURN);
         }
+        MPI_Comm node;  // the ranks that share this rank's memory
+        check(MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node),
+              "MPI_Comm_split_type");
+        int node_size = 0;
+        MPI_Comm_size(node, &node_size);
+        MPI_Comm_free(&node);
+        int local = node_size == size_ ? 1 : 0, all_local = 0;  // the same answer on every rank
+        check(MPI_Allreduce(&local, &all_local, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD), "MPI_Allreduce");
+        one_node = all_local != 0;
     }
     ~MpiExchange() override {
         for (MPI_Comm& c : comm_) MPI_Comm_free(&c);
@@ -53,6 +62,30 @@ public:
         wait(q, "MPI_Iallgatherv");
         transfer_seconds[static_cast<int>(ch)] += MPI_Wtime() - t0;
         count(ch, bytes * static_cast<uint64_t>(size_ - 1), total - bytes);
+    }
+
+    void all_gather_in_place(sl::Channel ch, void* data, uint64_t element_bytes,
+                             const std::vector<uint64_t>& bounds) override {
+        MPI_Comm c = comm(ch);
+        // One element is one MPI item: the counts and displacements (ints) then reach 2^31
+        // elements, not 2 GiB.
+        MPI_Datatype element;
+        check(MPI_Type_contiguous(to_int(element_bytes), MPI_BYTE, &element), "MPI_Type_contiguous");
+        check(MPI_Type_commit(&element), "MPI_Type_commit");
+        std::vector<int> n, at;
+        for (int r = 0; r < size_; ++r) {
+            n.push_back(to_int(bounds[static_cast<size_t>(r) + 1] - bounds[static_cast<size_t>(r)]));
+            at.push_back(to_int(bounds[static_cast<size_t>(r)]));
+        }
+        MPI_Request q;
+        const double t0 = MPI_Wtime();
+        check(MPI_Iallgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, data, n.data(), at.data(), element, c, &q),
+              "MPI_Iallgatherv");
+        wait(q, "MPI_Iallgatherv");
+        transfer_seconds[static_cast<int>(ch)] += MPI_Wtime() - t0;
+        MPI_Type_free(&element);
+        const uint64_t mine = static_cast<uint64_t>(n[static_cast<size_t>(rank_)]) * element_bytes;
+        count(ch, mine * static_cast<uint64_t>(size_ - 1), (bounds.back() - bounds.front()) * element_bytes - mine);
     }
 
     void gather(sl::Channel ch, const void* mine, uint64_t bytes, std::vector<char>& all,

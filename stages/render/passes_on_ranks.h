@@ -3,7 +3,8 @@
 // batches, then the all-gather that gives every rank all of them) need no radius and touch only
 // the photon batches, so they run while pass k's camera pass reads the grid: the exchange is
 // overlapped with work. Then the batches are sorted into the grid with the cell size that the
-// ranks agreed on (the largest radius of any rank's pixels). The results are those of one
+// ranks agreed on (the largest radius of any rank's pixels); ranks on one machine divide that
+// sort among themselves and all-gather the sorted parts. The results are those of one
 // process, bit for bit: the same records in the same order, the same radii. Which rank traces
 // which batches follows the ranks' measured costs (stages/render/batch_shares.h): a batch's
 // records are the same whoever traces it, so only the waiting at the exchange changes.

@@ -118,7 +118,7 @@ void size_for_overwrite(std::vector<T>& v, size_t n) {
 uint64_t PhotonMap::bytes() const {
     uint64_t b = sorted_.capacity() * sizeof(PhotonRecord) +
                  (cell_start_.capacity() + partition_start_.capacity()) * sizeof(uint32_t) +
-                 exchanged_.capacity() + outgoing_.capacity();
+                 exchanged_.capacity();
     for (const std::vector<PhotonRecord>& group : scratch_) b += group.capacity() * sizeof(PhotonRecord);
     for (const std::vector<uint32_t>& slots : scratch_slot_) b += slots.capacity() * sizeof(uint32_t);
     for (const Batch& v : batches_)
@@ -192,7 +192,7 @@ void PhotonMap::finish(const RenderContext& ctx, double cell_size, PhotonTraceCo
     inv_cell_ = inverse_cell(cell_size);
     size_t total = 0;
     for (const Batch& v : batches_) total += v.count();
-    sort_into_grid(total);
+    sort_into_grid(total, ctx.exchange);
     if (volume) {
         std::vector<const std::vector<VolumePhoton>*> parts;
         parts.reserve(batches_.size());
@@ -204,30 +204,37 @@ void PhotonMap::finish(const RenderContext& ctx, double cell_size, PhotonTraceCo
 // One all-gather per pass. A rank's message: per own batch its record and volume-photon counts
 // (two uint32), then the records, then the volume photons, batch after batch. Unpacked in
 // batch order, every rank ends with the same batches, hence the same grid and the same BVH.
+// The message sizes go first (one small reduction), so that each rank packs its batches
+// straight into its place in the gathered buffer and the all-gather runs in place: no copy of
+// a rank's own message, and the buffer is kept between passes (no fresh pages to fault in).
 void PhotonMap::exchange_batches(RankExchange& ex, size_t nbatches) {
     const int n = ex.ranks(), me = ex.rank();
     const size_t first = share_begin(nbatches, me, n), end = share_begin(nbatches, me + 1, n);
-    std::vector<char>& mine = outgoing_;  // kept between passes: no fresh pages to fault in per pass
+    static_assert(sizeof(PhotonRecord) % 8 == 0 && sizeof(VolumePhoton) % 8 == 0, "messages in 8-byte units");
+    std::vector<uint64_t> counts(static_cast<size_t>(n), 0);  // bytes, multiples of 8
+    uint64_t& bytes = counts[static_cast<size_t>(me)];
+    bytes = (end - first) * 2 * sizeof(uint32_t);
+    for (size_t b = first; b < end; ++b)
+        bytes += batches_[b].records.size() * sizeof(PhotonRecord) + batches_[b].volume.size() * sizeof(VolumePhoton);
+    ex.sum(Channel::Photons, counts.data(), n);
+    std::vector<uint64_t> bounds(static_cast<size_t>(n) + 1, 0);  // in 8-byte units
+    for (size_t r = 0; r < counts.size(); ++r) bounds[r + 1] = bounds[r] + counts[r] / 8;
+    size_for_overwrite(exchanged_, bounds.back() * 8);
     {
-        size_t bytes = (end - first) * 2 * sizeof(uint32_t);
-        for (size_t b = first; b < end; ++b)
-            bytes += batches_[b].records.size() * sizeof(PhotonRecord) + batches_[b].volume.size() * sizeof(VolumePhoton);
-        mine.resize(bytes);
-        char* at = mine.data();
+        char* at = exchanged_.data() + bounds[static_cast<size_t>(me)] * 8;
         auto put = [&](const void* src, size_t len) {
             if (len) std::memcpy(at, src, len);
             at += len;
         };
         for (size_t b = first; b < end; ++b) {
-            const uint32_t counts[2] = {static_cast<uint32_t>(batches_[b].records.size()),
-                                        static_cast<uint32_t>(batches_[b].volume.size())};
-            put(counts, sizeof counts);
+            const uint32_t c[2] = {static_cast<uint32_t>(batches_[b].records.size()),
+                                   static_cast<uint32_t>(batches_[b].volume.size())};
+            put(c, sizeof c);
         }
         for (size_t b = first; b < end; ++b) put(batches_[b].records.data(), batches_[b].records.size() * sizeof(PhotonRecord));
         for (size_t b = first; b < end; ++b) put(batches_[b].volume.data(), batches_[b].volume.size() * sizeof(VolumePhoton));
     }
-    std::vector<uint64_t> counts;
-    ex.all_gather(Channel::Photons, mine.data(), mine.size(), exchanged_, counts);
+    ex.all_gather_in_place(Channel::Photons, exchanged_.data(), 8, bounds);
     // Where each other rank's batch starts in the message (a cheap scan). Its records are then
     // sorted from there, in place; its volume photons are copied into the batch (in parallel:
     // every rank makes these copies, so they must not be one thread's work).
@@ -278,7 +285,17 @@ void PhotonMap::exchange_batches(RankExchange& ex, size_t nbatches) {
 // a core's cache. Each record is hashed once before the first step (by its tracing task when
 // that knew the cell size) and the first step reads only those 4 bytes to place it; the second
 // hashes the group's copy again, in cache, rather than stage a slot per record through memory.
-void PhotonMap::sort_into_grid(size_t total) {
+//
+// With ranks on one machine, every rank holds every record (exchange_batches) but sorts only a
+// contiguous run of the partitions, about 1/N of the records (the runs are cut by record count,
+// from the partition sizes every rank computes alike); then one in-place all-gather of the
+// sorted records and one of the matching cell_start_ entries (absolute indices) give every rank
+// the grid one process builds. Every rank still hashes every record (read in order): a rank must
+// know where each batch's records go, and the cell size is known only now, after the photons
+// were exchanged beside the camera pass. Over shared memory the second all-gather costs less
+// than the sort it divides; over a network it would not (docs/distributed.md), so ranks on
+// several machines each sort the whole map, as one process does.
+void PhotonMap::sort_into_grid(size_t total, RankExchange* ex) {
     uint32_t table = 1u << 10;
     while (table < 2 * total && table < (1u << 30)) table <<= 1;
     mask_ = table - 1;
@@ -309,16 +326,45 @@ void PhotonMap::sort_into_grid(size_t total) {
         }
     }
     partition_start_[parts] = offset;
+    // This rank's partitions [own_first, own_end): all of them in one process, and with ranks
+    // on several machines (where sending the sorted records costs more than sorting them).
+    const int ranks = ex && ex->one_node ? ex->ranks() : 1;
+    std::vector<size_t> part_bound(static_cast<size_t>(ranks) + 1, parts);
+    part_bound[0] = 0;
+    for (int r = 1; r < ranks; ++r) {  // the first partition at or past the rank's share of the records
+        size_t p = part_bound[static_cast<size_t>(r) - 1];
+        while (p < parts && static_cast<uint64_t>(partition_start_[p]) * static_cast<uint64_t>(ranks) <
+                                static_cast<uint64_t>(total) * static_cast<uint64_t>(r))
+            ++p;
+        part_bound[static_cast<size_t>(r)] = p;
+    }
+    const int me = ranks > 1 ? ex->rank() : 0;
+    const size_t own_first = part_bound[static_cast<size_t>(me)], own_end = part_bound[static_cast<size_t>(me) + 1];
     size_for_overwrite(sorted_, total);
     tbb::parallel_for(size_t(0), batches_.size(), [&](size_t b) {
         Batch& batch = batches_[b];
         std::vector<uint32_t>& cursor = batch.partition_begin;  // write cursors, then the ends
         const PhotonRecord* records = batch.data();
         const uint32_t* hash = batch.hash.data();
-        for (size_t i = 0, n = batch.count(); i < n; ++i) sorted_[cursor[(hash[i] & mask_) >> shift]++] = records[i];
+        const size_t n = batch.count();
+        if (ranks == 1) {
+            for (size_t i = 0; i < n; ++i) sorted_[cursor[(hash[i] & mask_) >> shift]++] = records[i];
+            return;
+        }
+        // Only this rank's partitions; the others' records go to a spare record, without a
+        // branch (which of the two is a coin toss per record).
+        PhotonRecord spare;
+        PhotonRecord* grid = sorted_.data();
+        for (size_t i = 0; i < n; ++i) {
+            const uint32_t part = (hash[i] & mask_) >> shift;
+            const uint32_t own = part - own_first < own_end - own_first ? 1u : 0u;
+            PhotonRecord* to = own ? grid + cursor[part] : &spare;
+            *to = records[i];
+            cursor[part] += own;
+        }
     });
     size_for_overwrite(cell_start_, static_cast<size_t>(table) + 1);
-    tbb::parallel_for(size_t(0), parts, [&](size_t part) {
+    tbb::parallel_for(own_first, own_end, [&](size_t part) {
         const uint32_t first_slot = static_cast<uint32_t>(part) << shift, slots = 1u << shift;
         uint32_t* start = &cell_start_[first_slot];
         std::fill(start, start + slots, 0u);
@@ -343,6 +389,13 @@ void PhotonMap::sort_into_grid(size_t total) {
         start[0] = lo;
     });
     cell_start_[table] = static_cast<uint32_t>(total);
+    if (ranks > 1) {
+        std::vector<uint64_t> bounds(part_bound.size());
+        for (size_t r = 0; r < bounds.size(); ++r) bounds[r] = partition_start_[part_bound[r]];
+        ex->all_gather_in_place(Channel::Passes, sorted_.data(), sizeof(PhotonRecord), bounds);
+        for (size_t r = 0; r < bounds.size(); ++r) bounds[r] = static_cast<uint64_t>(part_bound[r]) << shift;
+        ex->all_gather_in_place(Channel::Passes, cell_start_.data(), sizeof(uint32_t), bounds);
+    }
 }
 
 }  // namespace sl

@@ -91,7 +91,7 @@ private:
         auto c = [inv_cell](float v) { return static_cast<int32_t>(std::floor(v * inv_cell)); };
         return hash_cell(c(p.x), c(p.y), c(p.z));
     }
-    void sort_into_grid(size_t total);
+    void sort_into_grid(size_t total, RankExchange* ex);  // ex: with ranks, each sorts a share
     // The first batch of rank `rank`'s share (set_batch_shares, else first_batch).
     size_t share_begin(size_t nbatches, int rank, int ranks) const {
         return shares_.size() == static_cast<size_t>(ranks) + 1 && shares_.back() == nbatches
@@ -105,7 +105,7 @@ private:
     struct Batch {
         std::vector<PhotonRecord> records;  // traced by this process
         // Or, with ranks, another rank's records, read in place in the exchange buffer (every
-        // rank sorts every record: a copy less is work that does not shrink with the ranks).
+        // rank reads every record for the sort: a copy less is work that does not shrink with N).
         const PhotonRecord* received = nullptr;
         uint32_t received_count = 0;
         const PhotonRecord* data() const { return received ? received : records.data(); }
@@ -125,8 +125,7 @@ private:
     std::vector<PhotonRecord> sorted_;  // records grouped by hash slot: the grid's cells
     std::vector<uint32_t> cell_start_;  // hash slot -> first record (size table + 1)
     std::vector<uint32_t> partition_start_;
-    std::vector<char> exchanged_;  // every rank's batches as received (kept: no reallocation per pass)
-    std::vector<char> outgoing_;   // this rank's batches, packed for the exchange (kept likewise)
+    std::vector<char> exchanged_;  // every rank's batches, this rank's packed in place (kept: no reallocation per pass)
     std::vector<size_t> shares_;   // with ranks: each rank's first batch, and the batch count
     OwnTrace own_trace_;
     uint32_t mask_ = 0;

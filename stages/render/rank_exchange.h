@@ -61,6 +61,10 @@ public:
     virtual void max(Channel c, double* values, int n) = 0;  // element-wise, in place
     virtual int max(Channel c, int v) = 0;
     virtual void sum(Channel c, uint64_t* values, int n) = 0;
+    // Every rank's part of one array, on every rank, in place: rank r holds elements
+    // [bounds[r], bounds[r + 1]) of `data` (each `element_bytes` long) and receives the others.
+    virtual void all_gather_in_place(Channel c, void* data, uint64_t element_bytes,
+                                     const std::vector<uint64_t>& bounds) = 0;
     // Rank 0's value, on every rank.
     virtual bool broadcast(Channel c, bool v) = 0;
     virtual double broadcast(Channel c, double v) = 0;
@@ -72,6 +76,11 @@ public:
                          std::vector<char>& mine) = 0;
     // Ends every rank of the job at once (after this rank printed why).
     [[noreturn]] virtual void abort(int code) = 0;
+
+    // Whether every rank runs on one machine (shared memory): there, moving bytes between ranks
+    // costs about what copying them costs, and the ranks divide the photon grid's sort among
+    // themselves and exchange the sorted parts; across a network they each sort it whole.
+    bool one_node = false;
 
     // Payload bytes this rank sent and received (rank 0's own share excluded), per channel.
     uint64_t sent[kChannels] = {}, received[kChannels] = {};
