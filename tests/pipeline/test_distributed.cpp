@@ -99,6 +99,14 @@ TEST_F(Distributed, ConstantEmissionWithSectionsAndAMediumIsTheOneProcessRender)
     expect_same_render(dir, with("cornell_haze.json", {"--sections", "3"}), {2});
 }
 
+// Ranks on separate machines each sort the whole photon map (on one machine they divide the
+// sort and gather the sorted parts): that path too is the one-process render, bit for bit.
+TEST_F(Distributed, RanksOnSeparateMachinesSortingTheWholeMapAreTheOneProcessRender) {
+    ::setenv("SLOWLIGHT_RANKS_AS_NODES", "1", 1);
+    expect_same_render(dir, with("cornell_haze.json", {"--sections", "2"}), {2});
+    ::unsetenv("SLOWLIGHT_RANKS_AS_NODES");
+}
+
 // A rank killed (SIGKILL) in the middle of the passes: the job ends, soon, with an error line
 // and a non-zero status, and no frame of the unfinished section is written.
 TEST_F(Distributed, ARankKilledMidRenderEndsTheJobWithAnError) {
