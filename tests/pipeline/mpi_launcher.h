@@ -21,9 +21,9 @@ inline std::string find_mpirun() {
     return "";
 }
 
-// `mpirun -np N slowlight ARGS...`; stdout (rank 0's) to `stdout_path`.
+// `mpirun [LAUNCHER_ARGS...] -np N slowlight ARGS...`; stdout (rank 0's) to `stdout_path`.
 inline ProgramResult run_ranks(int n, const std::vector<std::string>& args, const std::string& stdout_path = "",
-                               double timeout_seconds = 120) {
+                               double timeout_seconds = 120, const std::vector<std::string>& launcher_args = {}) {
     // Open MPI: root allowed (CI runs as root), no network but loopback and shared memory,
     // shared memory without cross-process reads (containers forbid them), oversubscribed.
     ::setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 1);
@@ -37,7 +37,8 @@ inline ProgramResult run_ranks(int n, const std::vector<std::string>& args, cons
     // costs every rank about 0.3 s of MPI_Init.
     ::setenv("OMPI_MCA_pml", "ob1", 1);
     ::setenv("OMPI_MCA_osc", "^ucx", 1);
-    std::vector<std::string> all = {"-np", std::to_string(n), binary()};
+    std::vector<std::string> all = launcher_args;
+    all.insert(all.end(), {"-np", std::to_string(n), binary()});
     all.insert(all.end(), args.begin(), args.end());
     return run_program(all, stdout_path, timeout_seconds, find_mpirun());
 }
