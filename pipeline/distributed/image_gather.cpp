@@ -7,10 +7,7 @@
 namespace sl {
 
 void gather_image(RankExchange& ex, size_t pixels, std::vector<float>& rgb, Channel channel) {
-    // Rank 0's receive buffer, kept from frame to frame: a fresh one is fresh pages to fault in
-    // (and zero) for every frame. One per channel: each channel is used by one thread at a time.
-    static std::vector<char> buffers[kChannels];
-    std::vector<char>& all = buffers[static_cast<int>(channel)];
+    std::vector<char>& all = ex.image_buffer[static_cast<int>(channel)];  // kept between frames
     std::vector<uint64_t> counts;
     ex.gather(channel, rgb.data(), rgb.size() * sizeof(float), all, counts);
     if (ex.rank() != 0) {

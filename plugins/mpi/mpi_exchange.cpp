@@ -51,24 +51,6 @@ public:
     int rank() const override { return rank_; }
     int ranks() const override { return size_; }
 
-    void all_gather(sl::Channel ch, const void* mine, uint64_t bytes, std::vector<char>& all,
-                    std::vector<uint64_t>& counts) override {
-        MPI_Comm c = comm(ch);
-        counts.assign(static_cast<size_t>(size_), 0);
-        MPI_Request q;
-        check(MPI_Iallgather(&bytes, 1, MPI_UINT64_T, counts.data(), 1, MPI_UINT64_T, c, &q), "MPI_Iallgather");
-        wait(q, "MPI_Iallgather");
-        std::vector<int> n, at;
-        const uint64_t total = displacements(counts, n, at);
-        all.resize(total);
-        const double t0 = MPI_Wtime();
-        check(MPI_Iallgatherv(mine, to_int(bytes), MPI_BYTE, all.data(), n.data(), at.data(), MPI_BYTE, c, &q),
-              "MPI_Iallgatherv");
-        wait(q, "MPI_Iallgatherv");
-        transfer_seconds[static_cast<int>(ch)] += MPI_Wtime() - t0;
-        count(ch, bytes * static_cast<uint64_t>(size_ - 1), total - bytes);
-    }
-
     void all_gather_in_place(sl::Channel ch, void* data, uint64_t element_bytes,
                              const std::vector<uint64_t>& bounds) override {
         MPI_Comm c = comm(ch);

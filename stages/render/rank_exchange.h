@@ -51,10 +51,8 @@ public:
     virtual int rank() const = 0;
     virtual int ranks() const = 0;
 
-    // Every rank's bytes, concatenated in rank order, on every rank; counts[r]: rank r's bytes.
-    virtual void all_gather(Channel c, const void* mine, uint64_t bytes, std::vector<char>& all,
-                            std::vector<uint64_t>& counts) = 0;
-    // The same, received by rank 0 only (the others get empty `all`).
+    // Every rank's bytes, concatenated in rank order, received by rank 0 only (the others get
+    // empty `all`); counts[r]: rank r's bytes.
     virtual void gather(Channel c, const void* mine, uint64_t bytes, std::vector<char>& all,
                         std::vector<uint64_t>& counts) = 0;
     virtual double max(Channel c, double v) = 0;
@@ -81,6 +79,11 @@ public:
     // costs about what copying them costs, and the ranks divide the photon grid's sort among
     // themselves and exchange the sorted parts; across a network they each sort it whole.
     bool one_node = false;
+
+    // Rank 0's receive buffer for gathered images, per channel, kept from frame to frame: a
+    // fresh one is fresh pages to fault in (and zero) for every frame. Each channel is used by
+    // one thread at a time, and the buffer lives as long as the job's exchange.
+    std::vector<char> image_buffer[kChannels];
 
     // Payload bytes this rank sent and received (rank 0's own share excluded), per channel.
     uint64_t sent[kChannels] = {}, received[kChannels] = {};
