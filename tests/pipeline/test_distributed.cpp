@@ -117,9 +117,11 @@ TEST_F(Distributed, AHostfileLaunchIsTheOneProcessRender) {
 // Ranks on separate machines each sort the whole photon map (on one machine they divide the
 // sort and gather the sorted parts): that path too is the one-process render, bit for bit.
 TEST_F(Distributed, RanksOnSeparateMachinesSortingTheWholeMapAreTheOneProcessRender) {
-    ::setenv("SLOWLIGHT_RANKS_AS_NODES", "1", 1);
+    struct ApartWhileInScope {  // unset again however the test ends: later tests divide the sort
+        ApartWhileInScope() { ::setenv("SLOWLIGHT_RANKS_AS_NODES", "1", 1); }
+        ~ApartWhileInScope() { ::unsetenv("SLOWLIGHT_RANKS_AS_NODES"); }
+    } apart;
     expect_same_render(dir, with("cornell_haze.json", {"--sections", "2"}), {2});
-    ::unsetenv("SLOWLIGHT_RANKS_AS_NODES");
 }
 
 // A rank killed (SIGKILL) in the middle of the passes: the job ends, soon, with an error line
