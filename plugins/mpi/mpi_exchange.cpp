@@ -13,7 +13,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <memory>
 #include <string>
+#include <vector>
 
 #include "stages/render/rank_exchange.h"
 
@@ -45,6 +47,7 @@ public:
         one_node = all_local != 0;
     }
     ~MpiExchange() override {
+        for (std::unique_ptr<Window>& w : shared_) w.reset();  // before their communicators
         for (MPI_Comm& c : comm_) MPI_Comm_free(&c);
         MPI_Finalize();
     }
@@ -155,6 +158,11 @@ public:
         if (rank_ == 0) count(ch, total - n, 0);
         else count(ch, 0, n);
     }
+    sl::SharedBlocks& shared(sl::Shared which, sl::Channel ch) override {
+        std::unique_ptr<Window>& w = shared_[static_cast<int>(which)];
+        if (!w) w = std::make_unique<Window>(*this, ch);
+        return *w;
+    }
     [[noreturn]] void abort(int code) override {
         std::fflush(stderr);
         MPI_Abort(MPI_COMM_WORLD, code);
@@ -162,6 +170,76 @@ public:
     }
 
 private:
+    // A shared-memory window (MPI_Win_allocate_shared) holding one block per rank, reallocated,
+    // by every rank at once, when a rank asks for more than its block holds. Every rank keeps a
+    // passive access epoch open on it (lock_all), so that MPI_Win_sync orders its loads and
+    // stores around the barriers of fence().
+    class Window final : public sl::SharedBlocks {
+    public:
+        Window(MpiExchange& ex, sl::Channel ch)
+            : ex_(ex), ch_(ch), asked_(static_cast<size_t>(ex.size_), 0), capacity_(asked_), block_(asked_.size()) {}
+        ~Window() override { release(); }
+        void reserve(uint64_t bytes) override {
+            std::fill(asked_.begin(), asked_.end(), 0);
+            asked_[static_cast<size_t>(ex_.rank_)] = bytes;
+            ex_.sum(ch_, asked_.data(), ex_.size_);
+            bool grow = win_ == MPI_WIN_NULL;
+            for (size_t r = 0; r < asked_.size(); ++r) grow |= asked_[r] > capacity_[r];
+            // What the other ranks' blocks hold is what this rank reads of them: the bytes that
+            // a message would have carried.
+            uint64_t others = 0;
+            for (size_t r = 0; r < asked_.size(); ++r) others += r == static_cast<size_t>(ex_.rank_) ? 0 : asked_[r];
+            ex_.count(ch_, bytes * static_cast<uint64_t>(ex_.size_ - 1), others);
+            if (!grow) return;
+            release();
+            // 1/16 spare and whole pages: the sizes move a little from pass to pass.
+            for (size_t r = 0; r < asked_.size(); ++r)
+                if (asked_[r] > capacity_[r]) capacity_[r] = (asked_[r] + asked_[r] / 16 + 4095) / 4096 * 4096;
+            MPI_Info info;
+            MPI_Info_create(&info);
+            MPI_Info_set(info, "alloc_shared_noncontig", "true");  // each block on its own pages
+            void* base = nullptr;
+            const int rc = MPI_Win_allocate_shared(static_cast<MPI_Aint>(capacity_[static_cast<size_t>(ex_.rank_)]), 1,
+                                                   info, ex_.comm(ch_), &base, &win_);
+            MPI_Info_free(&info);
+            ex_.check(rc, "MPI_Win_allocate_shared");
+            MPI_Win_set_errhandler(win_, MPI_ERRORS_RETURN);
+            ex_.check(MPI_Win_lock_all(MPI_MODE_NOCHECK, win_), "MPI_Win_lock_all");
+            for (int r = 0; r < ex_.size_; ++r) {
+                MPI_Aint size = 0;
+                int unit = 0;
+                void* at = nullptr;
+                ex_.check(MPI_Win_shared_query(win_, r, &size, &unit, &at), "MPI_Win_shared_query");
+                block_[static_cast<size_t>(r)] = static_cast<char*>(at);
+            }
+        }
+        char* block(int rank) const override { return block_[static_cast<size_t>(rank)]; }
+        uint64_t asked(int rank) const override { return asked_[static_cast<size_t>(rank)]; }
+        uint64_t capacity(int rank) const override { return capacity_[static_cast<size_t>(rank)]; }
+        void fence() override {
+            if (win_ != MPI_WIN_NULL) MPI_Win_sync(win_);
+            MPI_Request q;
+            ex_.check(MPI_Ibarrier(ex_.comm(ch_), &q), "MPI_Ibarrier");
+            ex_.wait(q, "MPI_Ibarrier");
+            if (win_ != MPI_WIN_NULL) MPI_Win_sync(win_);
+        }
+
+    private:
+        // Collective, like the allocation: every rank frees the window at the same point (a
+        // reallocation, or the end of the job).
+        void release() {
+            if (win_ == MPI_WIN_NULL) return;
+            MPI_Win_unlock_all(win_);
+            MPI_Win_free(&win_);
+            std::fill(block_.begin(), block_.end(), nullptr);
+        }
+        MpiExchange& ex_;
+        sl::Channel ch_;
+        std::vector<uint64_t> asked_, capacity_;
+        std::vector<char*> block_;
+        MPI_Win win_ = MPI_WIN_NULL;
+    };
+
     // Waits for a collective without keeping the core busy. MPI's own blocking calls poll in a
     // loop (at best calling sched_yield), so a rank that arrives first at a collective burns its
     // core for as long as the slowest rank needs: on a node shared with other work, or with more
@@ -230,6 +308,7 @@ private:
 
     int rank_ = 0, size_ = 1;
     MPI_Comm comm_[sl::kChannels] = {MPI_COMM_NULL, MPI_COMM_NULL, MPI_COMM_NULL};
+    std::unique_ptr<Window> shared_[sl::kSharedSets];
 };
 
 }  // namespace

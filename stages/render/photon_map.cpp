@@ -119,6 +119,9 @@ uint64_t PhotonMap::bytes() const {
     uint64_t b = sorted_.capacity() * sizeof(PhotonRecord) +
                  (cell_start_.capacity() + partition_start_.capacity()) * sizeof(uint32_t) +
                  exchanged_.capacity();
+    if (shared_)  // this rank's blocks of the memory shared with the others
+        for (Shared set : {Shared::Traced, Shared::Grid})
+            b += shared_->shared(set, set == Shared::Traced ? Channel::Photons : Channel::Passes).capacity(shared_->rank());
     for (const std::vector<PhotonRecord>& group : scratch_) b += group.capacity() * sizeof(PhotonRecord);
     for (const std::vector<uint32_t>& slots : scratch_slot_) b += slots.capacity() * sizeof(uint32_t);
     for (const Batch& v : batches_)
@@ -201,12 +204,16 @@ void PhotonMap::finish(const RenderContext& ctx, double cell_size, PhotonTraceCo
     }
 }
 
-// One all-gather per pass. A rank's message: per own batch its record and volume-photon counts
-// (two uint32), then the records, then the volume photons, batch after batch. Unpacked in
-// batch order, every rank ends with the same batches, hence the same grid and the same BVH.
-// The message sizes go first (one small reduction), so that each rank packs its batches
-// straight into its place in the gathered buffer and the all-gather runs in place: no copy of
-// a rank's own message, and the buffer is kept between passes (no fresh pages to fault in).
+// A rank's message: per own batch its record and volume-photon counts (two uint32), then the
+// records, then the volume photons, batch after batch. Unpacked in batch order, every rank ends
+// with the same batches, hence the same grid and the same BVH.
+// Across machines, one all-gather per pass: the message sizes go first (one small reduction),
+// so that each rank packs its batches straight into its place in the gathered buffer and the
+// all-gather runs in place (no copy of a rank's own message; the buffer is kept between passes).
+// On one machine each rank packs its message into its own shared block and the others read it
+// there after a barrier: nothing is copied between ranks. The block is written again only for
+// the pass after next, by which time every rank has sorted this pass's records (the grid's
+// barrier in sort_into_grid comes between).
 void PhotonMap::exchange_batches(RankExchange& ex, size_t nbatches) {
     const int n = ex.ranks(), me = ex.rank();
     const size_t first = share_begin(nbatches, me, n), end = share_begin(nbatches, me + 1, n);
@@ -216,12 +223,7 @@ void PhotonMap::exchange_batches(RankExchange& ex, size_t nbatches) {
     bytes = (end - first) * 2 * sizeof(uint32_t);
     for (size_t b = first; b < end; ++b)
         bytes += batches_[b].records.size() * sizeof(PhotonRecord) + batches_[b].volume.size() * sizeof(VolumePhoton);
-    ex.sum(Channel::Photons, counts.data(), n);
-    std::vector<uint64_t> bounds(static_cast<size_t>(n) + 1, 0);  // in 8-byte units
-    for (size_t r = 0; r < counts.size(); ++r) bounds[r + 1] = bounds[r] + counts[r] / 8;
-    size_for_overwrite(exchanged_, bounds.back() * 8);
-    {
-        char* at = exchanged_.data() + bounds[static_cast<size_t>(me)] * 8;
+    auto pack = [&](char* at) {
         auto put = [&](const void* src, size_t len) {
             if (len) std::memcpy(at, src, len);
             at += len;
@@ -233,8 +235,26 @@ void PhotonMap::exchange_batches(RankExchange& ex, size_t nbatches) {
         }
         for (size_t b = first; b < end; ++b) put(batches_[b].records.data(), batches_[b].records.size() * sizeof(PhotonRecord));
         for (size_t b = first; b < end; ++b) put(batches_[b].volume.data(), batches_[b].volume.size() * sizeof(VolumePhoton));
+    };
+    std::vector<const char*> message(static_cast<size_t>(n));  // where each rank's message is
+    if (ex.one_node && n > 1) {
+        SharedBlocks& traced = ex.shared(Shared::Traced, Channel::Photons);
+        traced.reserve(bytes);
+        pack(traced.block(me));
+        traced.fence();
+        for (int r = 0; r < n; ++r) {
+            counts[static_cast<size_t>(r)] = traced.asked(r);
+            message[static_cast<size_t>(r)] = traced.block(r);
+        }
+    } else {
+        ex.sum(Channel::Photons, counts.data(), n);
+        std::vector<uint64_t> bounds(static_cast<size_t>(n) + 1, 0);  // in 8-byte units
+        for (size_t r = 0; r < counts.size(); ++r) bounds[r + 1] = bounds[r] + counts[r] / 8;
+        size_for_overwrite(exchanged_, bounds.back() * 8);
+        pack(exchanged_.data() + bounds[static_cast<size_t>(me)] * 8);
+        ex.all_gather_in_place(Channel::Photons, exchanged_.data(), 8, bounds);
+        for (int r = 0; r < n; ++r) message[static_cast<size_t>(r)] = exchanged_.data() + bounds[static_cast<size_t>(r)] * 8;
     }
-    ex.all_gather_in_place(Channel::Photons, exchanged_.data(), 8, bounds);
     // Where each other rank's batch starts in the message (a cheap scan). Its records are then
     // sorted from there, in place; its volume photons are copied into the batch (in parallel:
     // every rank makes these copies, so they must not be one thread's work).
@@ -244,9 +264,8 @@ void PhotonMap::exchange_batches(RankExchange& ex, size_t nbatches) {
         uint32_t n_records, n_volume;
     };
     std::vector<Source> from(nbatches, Source{nullptr, nullptr, 0, 0});
-    const char* at = exchanged_.data();
     for (int r = 0; r < n; ++r) {
-        const char* next = at + counts[static_cast<size_t>(r)];
+        const char* at = message[static_cast<size_t>(r)];
         const size_t f = share_begin(nbatches, r, n), e = share_begin(nbatches, r + 1, n);
         if (r != me) {
             const char* data = at + (e - f) * 2 * sizeof(uint32_t);
@@ -263,7 +282,6 @@ void PhotonMap::exchange_batches(RankExchange& ex, size_t nbatches) {
                 data += from[b].n_volume * sizeof(VolumePhoton);
             }
         }
-        at = next;
     }
     tbb::parallel_for(size_t(0), nbatches, [&](size_t b) {
         const Source& src = from[b];
@@ -286,15 +304,14 @@ void PhotonMap::exchange_batches(RankExchange& ex, size_t nbatches) {
 // that knew the cell size) and the first step reads only those 4 bytes to place it; the second
 // hashes the group's copy again, in cache, rather than stage a slot per record through memory.
 //
-// With ranks on one machine, every rank holds every record (exchange_batches) but sorts only a
-// contiguous run of the partitions, about 1/N of the records (the runs are cut by record count,
-// from the partition sizes every rank computes alike); then one in-place all-gather of the
-// sorted records and one of the matching cell_start_ entries (absolute indices) give every rank
-// the grid one process builds. Every rank still hashes every record (read in order): a rank must
-// know where each batch's records go, and the cell size is known only now, after the photons
-// were exchanged beside the camera pass. Over shared memory the second all-gather costs less
-// than the sort it divides; over a network it would not (docs/distributed.md), so ranks on
-// several machines each sort the whole map, as one process does.
+// With ranks on one machine, the grid is one array in memory they share (in rank 0's block),
+// and each rank sorts into it only a contiguous run of the partitions, about 1/N of the records
+// (the runs are cut by record count, from the partition sizes every rank computes alike); a
+// barrier, and every rank gathers from the grid one process builds. Every rank still hashes
+// every record (read in order): a rank must know where each batch's records go, and the cell
+// size is known only now, after the photons were exchanged beside the camera pass. Ranks on
+// several machines each sort the whole map into their own grid, as one process does: sending
+// the sorted parts would cost more than sorting them (docs/distributed.md).
 void PhotonMap::sort_into_grid(size_t total, RankExchange* ex) {
     uint32_t table = 1u << 10;
     while (table < 2 * total && table < (1u << 30)) table <<= 1;
@@ -340,7 +357,23 @@ void PhotonMap::sort_into_grid(size_t total, RankExchange* ex) {
     }
     const int me = ranks > 1 ? ex->rank() : 0;
     const size_t own_first = part_bound[static_cast<size_t>(me)], own_end = part_bound[static_cast<size_t>(me) + 1];
-    size_for_overwrite(sorted_, total);
+    // Where the grid goes. Its last pass's readers are done: every rank has ended its camera
+    // pass before any rank sorts the next (the pass's reduction lies between).
+    PhotonRecord* grid = nullptr;
+    uint32_t* cells = nullptr;
+    SharedBlocks* shared = ranks > 1 ? &ex->shared(Shared::Grid, Channel::Passes) : nullptr;
+    if (shared) {
+        const uint64_t cells_at = (static_cast<uint64_t>(total) * sizeof(PhotonRecord) + 63) / 64 * 64;
+        shared->reserve(me == 0 ? cells_at + (static_cast<uint64_t>(table) + 1) * sizeof(uint32_t) : 0);
+        grid = reinterpret_cast<PhotonRecord*>(shared->block(0));
+        cells = reinterpret_cast<uint32_t*>(shared->block(0) + cells_at);
+        shared_ = ex;
+    } else {
+        size_for_overwrite(sorted_, total);
+        size_for_overwrite(cell_start_, static_cast<size_t>(table) + 1);
+        grid = sorted_.data();
+        cells = cell_start_.data();
+    }
     tbb::parallel_for(size_t(0), batches_.size(), [&](size_t b) {
         Batch& batch = batches_[b];
         std::vector<uint32_t>& cursor = batch.partition_begin;  // write cursors, then the ends
@@ -348,13 +381,12 @@ void PhotonMap::sort_into_grid(size_t total, RankExchange* ex) {
         const uint32_t* hash = batch.hash.data();
         const size_t n = batch.count();
         if (ranks == 1) {
-            for (size_t i = 0; i < n; ++i) sorted_[cursor[(hash[i] & mask_) >> shift]++] = records[i];
+            for (size_t i = 0; i < n; ++i) grid[cursor[(hash[i] & mask_) >> shift]++] = records[i];
             return;
         }
         // Only this rank's partitions; the others' records go to a spare record, without a
         // branch (which of the two is a coin toss per record).
         PhotonRecord spare;
-        PhotonRecord* grid = sorted_.data();
         for (size_t i = 0; i < n; ++i) {
             const uint32_t part = (hash[i] & mask_) >> shift;
             const uint32_t own = part - own_first < own_end - own_first ? 1u : 0u;
@@ -363,16 +395,15 @@ void PhotonMap::sort_into_grid(size_t total, RankExchange* ex) {
             cursor[part] += own;
         }
     });
-    size_for_overwrite(cell_start_, static_cast<size_t>(table) + 1);
     tbb::parallel_for(own_first, own_end, [&](size_t part) {
         const uint32_t first_slot = static_cast<uint32_t>(part) << shift, slots = 1u << shift;
-        uint32_t* start = &cell_start_[first_slot];
+        uint32_t* start = cells + first_slot;
         std::fill(start, start + slots, 0u);
         const uint32_t lo = partition_start_[part], hi = partition_start_[part + 1];
         // The group's records in staged order (batch after batch), and their slots, from this
         // copy (in the core's cache: cheaper than a second array of slots through memory).
         std::vector<PhotonRecord>& group = scratch_.local();
-        group.assign(sorted_.begin() + lo, sorted_.begin() + hi);
+        group.assign(grid + lo, grid + hi);
         std::vector<uint32_t>& local = scratch_slot_.local();
         local.resize(hi - lo);
         for (uint32_t i = 0; i < hi - lo; ++i) ++start[local[i] = slot_of(group[i]) - first_slot];
@@ -384,18 +415,15 @@ void PhotonMap::sort_into_grid(size_t total, RankExchange* ex) {
         }
         // Back into the group's range with start[] as the cursor; afterwards start[s] is slot
         // s's end, so shift it back.
-        for (uint32_t i = 0; i < hi - lo; ++i) sorted_[start[local[i]]++] = group[i];
+        for (uint32_t i = 0; i < hi - lo; ++i) grid[start[local[i]]++] = group[i];
         for (uint32_t s = slots - 1; s > 0; --s) start[s] = start[s - 1];
         start[0] = lo;
     });
-    cell_start_[table] = static_cast<uint32_t>(total);
-    if (ranks > 1) {
-        std::vector<uint64_t> bounds(part_bound.size());
-        for (size_t r = 0; r < bounds.size(); ++r) bounds[r] = partition_start_[part_bound[r]];
-        ex->all_gather_in_place(Channel::Passes, sorted_.data(), sizeof(PhotonRecord), bounds);
-        for (size_t r = 0; r < bounds.size(); ++r) bounds[r] = static_cast<uint64_t>(part_bound[r]) << shift;
-        ex->all_gather_in_place(Channel::Passes, cell_start_.data(), sizeof(uint32_t), bounds);
-    }
+    if (me == 0) cells[table] = static_cast<uint32_t>(total);
+    if (shared) shared->fence();  // every rank's part is in place before any rank reads the grid
+    grid_ = grid;
+    cells_ = cells;
+    grid_size_ = total;
 }
 
 }  // namespace sl

@@ -8,6 +8,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "core/oct_normal.h"
@@ -52,9 +53,9 @@ public:
                double cell_size = 0);
     void finish(const RenderContext& ctx, double cell_size, PhotonTraceCounters& counters, VolumePhotonMap* volume);
 
-    size_t size() const { return sorted_.size(); }
+    size_t size() const { return grid_size_; }
     // This pass's surface records (grid order), e.g. for flux bookkeeping in tests.
-    const std::vector<PhotonRecord>& records() const { return sorted_; }
+    std::span<const PhotonRecord> records() const { return {grid_, grid_size_}; }
     uint64_t bytes() const;
 
     // Calls f(const PhotonRecord&) for every photon within sqrt(r2) of p.
@@ -122,8 +123,14 @@ private:
     tbb::enumerable_thread_specific<std::vector<PhotonRecord>> scratch_;
     tbb::enumerable_thread_specific<std::vector<uint32_t>> scratch_slot_;
     float traced_inv_cell_ = 0;  // the cell size trace() hashed this rank's batches for (0: none)
-    std::vector<PhotonRecord> sorted_;  // records grouped by hash slot: the grid's cells
-    std::vector<uint32_t> cell_start_;  // hash slot -> first record (size table + 1)
+    // The grid: records grouped by hash slot, and each slot's first record (table + 1 entries).
+    // In this process's own arrays, or, with ranks on one machine, in memory they share.
+    std::vector<PhotonRecord> sorted_;
+    std::vector<uint32_t> cell_start_;
+    const PhotonRecord* grid_ = nullptr;
+    const uint32_t* cells_ = nullptr;
+    size_t grid_size_ = 0;
+    RankExchange* shared_ = nullptr;  // the exchange whose shared blocks hold the grid, if any
     std::vector<uint32_t> partition_start_;
     std::vector<char> exchanged_;  // every rank's batches, this rank's packed in place (kept: no reallocation per pass)
     std::vector<size_t> shares_;   // with ranks: each rank's first batch, and the batch count
@@ -134,7 +141,7 @@ private:
 
 template <class F>
 void PhotonMap::for_each_near(float px, float py, float pz, float r2, F&& f) const {
-    if (sorted_.empty()) return;
+    if (grid_size_ == 0) return;
     float r = std::sqrt(r2);
     int32_t x0 = cell(px - r), x1 = cell(px + r);
     int32_t y0 = cell(py - r), y1 = cell(py + r);
@@ -152,8 +159,8 @@ void PhotonMap::for_each_near(float px, float py, float pz, float r2, F&& f) con
                 if (dup) continue;
                 if (nseen == 27) continue;  // unreachable while r <= cell size; guards the array
                 seen[nseen++] = h;
-                for (uint32_t i = cell_start_[h], e = cell_start_[h + 1]; i < e; ++i) {
-                    const PhotonRecord& ph = sorted_[i];
+                for (uint32_t i = cells_[h], e = cells_[h + 1]; i < e; ++i) {
+                    const PhotonRecord& ph = grid_[i];
                     float dx = ph.x - px, dy = ph.y - py, dz = ph.z - pz;
                     if (dx * dx + dy * dy + dz * dz < r2) f(ph);
                 }

@@ -45,6 +45,28 @@ struct PixelShare {
 enum class Channel { Passes = 0, Frames = 1, Photons = 2 };
 inline constexpr int kChannels = 3;
 
+// Memory that the ranks of one machine map together (RankExchange::one_node only): one block
+// per rank, which its rank alone writes and every rank reads. On one machine this replaces
+// copying the photon records from rank to rank twice a pass. Kept by the exchange for the job.
+class SharedBlocks {
+public:
+    virtual ~SharedBlocks() = default;
+    // Collective (every rank, at the same point, on this block set's channel): afterwards this
+    // rank's block holds at least `bytes`, and asked(r) is what rank r asked for. The blocks keep
+    // their contents unless some rank's block had to grow.
+    virtual void reserve(uint64_t bytes) = 0;
+    virtual char* block(int rank) const = 0;  // 64-byte aligned
+    virtual uint64_t asked(int rank) const = 0;
+    virtual uint64_t capacity(int rank) const = 0;
+    // Collective: every rank's writes to the blocks before it are seen by every rank after it.
+    virtual void fence() = 0;
+};
+
+// The block sets a render shares: the photon records each rank traced, and the photon grid
+// (its records and cell starts, in rank 0's block; each rank sorts its part into it).
+enum class Shared { Traced = 0, Grid = 1 };
+inline constexpr int kSharedSets = 2;
+
 class RankExchange {
 public:
     virtual ~RankExchange() = default;
@@ -72,12 +94,15 @@ public:
     // only): each rank's part in `mine`.
     virtual void scatter(Channel c, const std::vector<char>& all, const std::vector<uint64_t>& counts,
                          std::vector<char>& mine) = 0;
+    // One of the job's shared block sets (one_node only), its collectives on channel `c`
+    // (the same channel every time for a set).
+    virtual SharedBlocks& shared(Shared which, Channel c) = 0;
     // Ends every rank of the job at once (after this rank printed why).
     [[noreturn]] virtual void abort(int code) = 0;
 
-    // Whether every rank runs on one machine (shared memory): there, moving bytes between ranks
-    // costs about what copying them costs, and the ranks divide the photon grid's sort among
-    // themselves and exchange the sorted parts; across a network they each sort it whole.
+    // Whether every rank runs on one machine: there the ranks map the photon records and the
+    // photon grid together (shared), divide the grid's sort among themselves and copy nothing
+    // between them; across a network they all-gather the records and each sorts the grid whole.
     bool one_node = false;
 
     // Rank 0's receive buffer for gathered images, per channel, kept from frame to frame: a

@@ -30,7 +30,7 @@ TEST(PhotonGrid, AGatherVisitsExactlyTheRecordsWithinItsRadius) {
     RenderContext ctx(test::small_box(8, 1, 40000));
     PhotonMap map;
     build(map, ctx, 2);
-    const std::vector<PhotonRecord>& all = map.records();
+    const std::span<const PhotonRecord> all = map.records();
     ASSERT_GT(all.size(), 40000u);  // several records per path in the closed box
     const float r2 = kRadius * kRadius;
     size_t queries = 0, found_total = 0;
