@@ -149,6 +149,8 @@ bool PhotonMap::trace(const RenderContext& ctx, const SectionLayout& layout, int
     RankExchange* ex = ctx.exchange;
     const size_t own_first = ex ? share_begin(nbatches, ex->rank(), ex->ranks()) : 0;
     const size_t own_end = ex ? share_begin(nbatches, ex->rank() + 1, ex->ranks()) : nbatches;
+    traced_bounds_.assign(1, 0);
+    for (int r = 0; ex && r < ex->ranks(); ++r) traced_bounds_.push_back(share_begin(nbatches, r + 1, ex->ranks()));
     const auto t0 = std::chrono::steady_clock::now();
     tbb::parallel_for(own_first, own_end, [&](size_t b) {
         Batch& batch = batches_[b];
@@ -158,6 +160,7 @@ bool PhotonMap::trace(const RenderContext& ctx, const SectionLayout& layout, int
         // and the threads took turns in the kernel for each block. Pages not written stay unmapped.
         if (batch.records.capacity() == 0) batch.records.reserve(size_t(kBatch) * 4);
         batch.received = nullptr;
+        batch.elsewhere = false;
         batch.volume.clear();
         batch.hash.clear();
         if (abandon && abandon->load(std::memory_order_relaxed)) return;
@@ -210,19 +213,21 @@ void PhotonMap::finish(const RenderContext& ctx, double cell_size, PhotonTraceCo
 // Across machines, one all-gather per pass: the message sizes go first (one small reduction),
 // so that each rank packs its batches straight into its place in the gathered buffer and the
 // all-gather runs in place (no copy of a rank's own message; the buffer is kept between passes).
-// On one machine each rank packs its message into its own shared block and the others read it
-// there after a barrier: nothing is copied between ranks. The block is written again only for
-// the pass after next, by which time every rank has sorted this pass's records (the grid's
-// barrier in sort_into_grid comes between).
+// On one machine the message holds no records (each rank puts its own into the shared grid,
+// sort_into_grid): each rank writes the counts and volume photons into its own shared block and
+// the others read them there after a barrier. The block is written again only for the pass
+// after next, by which time every rank has sorted this pass (the grid's barriers come between).
 void PhotonMap::exchange_batches(RankExchange& ex, size_t nbatches) {
     const int n = ex.ranks(), me = ex.rank();
     const size_t first = share_begin(nbatches, me, n), end = share_begin(nbatches, me + 1, n);
+    const bool shared = ex.one_node && n > 1;
     static_assert(sizeof(PhotonRecord) % 8 == 0 && sizeof(VolumePhoton) % 8 == 0, "messages in 8-byte units");
     std::vector<uint64_t> counts(static_cast<size_t>(n), 0);  // bytes, multiples of 8
     uint64_t& bytes = counts[static_cast<size_t>(me)];
     bytes = (end - first) * 2 * sizeof(uint32_t);
     for (size_t b = first; b < end; ++b)
-        bytes += batches_[b].records.size() * sizeof(PhotonRecord) + batches_[b].volume.size() * sizeof(VolumePhoton);
+        bytes += (shared ? 0 : batches_[b].records.size() * sizeof(PhotonRecord)) +
+                 batches_[b].volume.size() * sizeof(VolumePhoton);
     auto pack = [&](char* at) {
         auto put = [&](const void* src, size_t len) {
             if (len) std::memcpy(at, src, len);
@@ -233,19 +238,17 @@ void PhotonMap::exchange_batches(RankExchange& ex, size_t nbatches) {
                                    static_cast<uint32_t>(batches_[b].volume.size())};
             put(c, sizeof c);
         }
-        for (size_t b = first; b < end; ++b) put(batches_[b].records.data(), batches_[b].records.size() * sizeof(PhotonRecord));
+        if (!shared)
+            for (size_t b = first; b < end; ++b) put(batches_[b].records.data(), batches_[b].records.size() * sizeof(PhotonRecord));
         for (size_t b = first; b < end; ++b) put(batches_[b].volume.data(), batches_[b].volume.size() * sizeof(VolumePhoton));
     };
     std::vector<const char*> message(static_cast<size_t>(n));  // where each rank's message is
-    if (ex.one_node && n > 1) {
+    if (shared) {
         SharedBlocks& traced = ex.shared(Shared::Traced, Channel::Photons);
         traced.reserve(bytes);
         pack(traced.block(me));
         traced.fence();
-        for (int r = 0; r < n; ++r) {
-            counts[static_cast<size_t>(r)] = traced.asked(r);
-            message[static_cast<size_t>(r)] = traced.block(r);
-        }
+        for (int r = 0; r < n; ++r) message[static_cast<size_t>(r)] = traced.block(r);
     } else {
         ex.sum(Channel::Photons, counts.data(), n);
         std::vector<uint64_t> bounds(static_cast<size_t>(n) + 1, 0);  // in 8-byte units
@@ -262,8 +265,9 @@ void PhotonMap::exchange_batches(RankExchange& ex, size_t nbatches) {
         const PhotonRecord* records;
         const char* volume;
         uint32_t n_records, n_volume;
+        bool other;
     };
-    std::vector<Source> from(nbatches, Source{nullptr, nullptr, 0, 0});
+    std::vector<Source> from(nbatches, Source{nullptr, nullptr, 0, 0, false});
     for (int r = 0; r < n; ++r) {
         const char* at = message[static_cast<size_t>(r)];
         const size_t f = share_begin(nbatches, r, n), e = share_begin(nbatches, r + 1, n);
@@ -272,10 +276,11 @@ void PhotonMap::exchange_batches(RankExchange& ex, size_t nbatches) {
             for (size_t b = f; b < e; ++b) {
                 uint32_t c[2];
                 std::memcpy(c, at + (b - f) * sizeof c, sizeof c);
-                from[b].records = reinterpret_cast<const PhotonRecord*>(data);  // 8-byte aligned
+                from[b].other = true;
+                from[b].records = shared ? nullptr : reinterpret_cast<const PhotonRecord*>(data);  // 8-byte aligned
                 from[b].n_records = c[0];
                 from[b].n_volume = c[1];
-                data += c[0] * sizeof(PhotonRecord);
+                if (!shared) data += c[0] * sizeof(PhotonRecord);
             }
             for (size_t b = f; b < e; ++b) {
                 from[b].volume = data;
@@ -285,8 +290,9 @@ void PhotonMap::exchange_batches(RankExchange& ex, size_t nbatches) {
     }
     tbb::parallel_for(size_t(0), nbatches, [&](size_t b) {
         const Source& src = from[b];
-        if (!src.records) return;  // this rank's own
+        if (!src.other) return;  // this rank's own
         batches_[b].received = src.records;
+        batches_[b].elsewhere = shared;
         batches_[b].received_count = src.n_records;
         batches_[b].volume.resize(src.n_volume);
         if (src.n_volume) std::memcpy(batches_[b].volume.data(), src.volume, src.n_volume * sizeof(VolumePhoton));
@@ -305,23 +311,58 @@ void PhotonMap::exchange_batches(RankExchange& ex, size_t nbatches) {
 // hashes the group's copy again, in cache, rather than stage a slot per record through memory.
 //
 // With ranks on one machine, the grid is one array in memory they share (in rank 0's block),
-// and each rank sorts into it only a contiguous run of the partitions, about 1/N of the records
-// (the runs are cut by record count, from the partition sizes every rank computes alike); a
-// barrier, and every rank gathers from the grid one process builds. Every rank still hashes
-// every record (read in order): a rank must know where each batch's records go, and the cell
-// size is known only now, after the photons were exchanged beside the camera pass. Ranks on
-// several machines each sort the whole map into their own grid, as one process does: sending
-// the sorted parts would cost more than sorting them (docs/distributed.md).
+// and the ranks divide the sort as threads divide it in one process: each rank hashes only the
+// batches it traced and publishes their partition counts (in its own block); a barrier; every
+// rank computes the same offsets from all the counts, and each copies its own batches' records
+// into their places in the shared grid; a barrier; each rank sorts a contiguous run of the
+// partitions (about 1/N of the records: the runs are cut by record count); a barrier, and every
+// rank gathers from the grid one process builds. No record is hashed, read or copied by more
+// than one rank. Ranks on several machines each sort the whole map into their own grid, as one
+// process does: sending the sorted parts would cost more than sorting them (docs/distributed.md).
 void PhotonMap::sort_into_grid(size_t total, RankExchange* ex) {
     uint32_t table = 1u << 10;
     while (table < 2 * total && table < (1u << 30)) table <<= 1;
     mask_ = table - 1;
     const int shift = std::countr_zero(table) - kPartitionBits;
     const size_t parts = size_t(1) << kPartitionBits;
+    const size_t nbatches = batches_.size();
+    const int ranks = ex && ex->one_node ? ex->ranks() : 1;
+    const int me = ranks > 1 ? ex->rank() : 0;
+    // The batches this rank places: those it traced on one machine, else all of them.
+    auto first_of = [&](int r) { return traced_bounds_[static_cast<size_t>(r)]; };
+    const size_t batch_first = ranks > 1 ? first_of(me) : 0;
+    const size_t batch_end = ranks > 1 ? first_of(me + 1) : nbatches;
+
+    // Where the grid goes. Its last pass's readers are done: every rank has ended its camera
+    // pass before any rank sorts the next (the pass's reduction lies between). On one machine
+    // rank 0's block holds the grid and its cells, and every rank's block ends with the
+    // partition counts of its batches.
+    PhotonRecord* grid = nullptr;
+    uint32_t* cells = nullptr;
+    SharedBlocks* shared = ranks > 1 ? &ex->shared(Shared::Grid, Channel::Passes) : nullptr;
+    const uint64_t counts_bytes = parts * sizeof(uint32_t);  // per batch
+    auto counts_of = [&](size_t b, int owner) {  // batch b's partition counts, in its owner's block
+        const uint64_t own_bytes = (first_of(owner + 1) - first_of(owner)) * counts_bytes;
+        return reinterpret_cast<uint32_t*>(shared->block(owner) + shared->asked(owner) - own_bytes) +
+               (b - first_of(owner)) * parts;
+    };
+    if (shared) {
+        const uint64_t cells_at = (static_cast<uint64_t>(total) * sizeof(PhotonRecord) + 63) / 64 * 64;
+        const uint64_t counts_at = me == 0 ? cells_at + (static_cast<uint64_t>(table) + 1) * sizeof(uint32_t) : 0;
+        shared->reserve(counts_at + (batch_end - batch_first) * counts_bytes);
+        grid = reinterpret_cast<PhotonRecord*>(shared->block(0));
+        cells = reinterpret_cast<uint32_t*>(shared->block(0) + cells_at);
+        shared_ = ex;
+    } else {
+        size_for_overwrite(sorted_, total);
+        size_for_overwrite(cell_start_, static_cast<size_t>(table) + 1);
+        grid = sorted_.data();
+        cells = cell_start_.data();
+    }
 
     // Each record's hash, once: made by the tracing task when it knew this cell size, else here.
     const bool traced_hashes = traced_inv_cell_ == inv_cell_;
-    tbb::parallel_for(size_t(0), batches_.size(), [&](size_t b) {
+    tbb::parallel_for(batch_first, batch_end, [&](size_t b) {
         Batch& batch = batches_[b];
         batch.partition_begin.assign(parts, 0);
         const PhotonRecord* records = batch.data();
@@ -331,7 +372,18 @@ void PhotonMap::sort_into_grid(size_t total, RankExchange* ex) {
             for (size_t i = 0; i < n; ++i) batch.hash[i] = hash_at(records[i], inv_cell_);
         }
         for (size_t i = 0; i < n; ++i) ++batch.partition_begin[(batch.hash[i] & mask_) >> shift];
+        if (shared) std::memcpy(counts_of(b, me), batch.partition_begin.data(), counts_bytes);
     });
+    if (shared) {  // the other ranks' counts
+        shared->fence();
+        for (int r = 0; r < ranks; ++r) {
+            if (r == me) continue;
+            for (size_t b = first_of(r); b < first_of(r + 1); ++b) {
+                const uint32_t* c = counts_of(b, r);
+                batches_[b].partition_begin.assign(c, c + parts);
+            }
+        }
+    }
     partition_start_.assign(parts + 1, 0);
     uint32_t offset = 0;
     for (size_t part = 0; part < parts; ++part) {
@@ -344,8 +396,7 @@ void PhotonMap::sort_into_grid(size_t total, RankExchange* ex) {
     }
     partition_start_[parts] = offset;
     // This rank's partitions [own_first, own_end): all of them in one process, and with ranks
-    // on several machines (where sending the sorted records costs more than sorting them).
-    const int ranks = ex && ex->one_node ? ex->ranks() : 1;
+    // on several machines.
     std::vector<size_t> part_bound(static_cast<size_t>(ranks) + 1, parts);
     part_bound[0] = 0;
     for (int r = 1; r < ranks; ++r) {  // the first partition at or past the rank's share of the records
@@ -355,46 +406,16 @@ void PhotonMap::sort_into_grid(size_t total, RankExchange* ex) {
             ++p;
         part_bound[static_cast<size_t>(r)] = p;
     }
-    const int me = ranks > 1 ? ex->rank() : 0;
     const size_t own_first = part_bound[static_cast<size_t>(me)], own_end = part_bound[static_cast<size_t>(me) + 1];
-    // Where the grid goes. Its last pass's readers are done: every rank has ended its camera
-    // pass before any rank sorts the next (the pass's reduction lies between).
-    PhotonRecord* grid = nullptr;
-    uint32_t* cells = nullptr;
-    SharedBlocks* shared = ranks > 1 ? &ex->shared(Shared::Grid, Channel::Passes) : nullptr;
-    if (shared) {
-        const uint64_t cells_at = (static_cast<uint64_t>(total) * sizeof(PhotonRecord) + 63) / 64 * 64;
-        shared->reserve(me == 0 ? cells_at + (static_cast<uint64_t>(table) + 1) * sizeof(uint32_t) : 0);
-        grid = reinterpret_cast<PhotonRecord*>(shared->block(0));
-        cells = reinterpret_cast<uint32_t*>(shared->block(0) + cells_at);
-        shared_ = ex;
-    } else {
-        size_for_overwrite(sorted_, total);
-        size_for_overwrite(cell_start_, static_cast<size_t>(table) + 1);
-        grid = sorted_.data();
-        cells = cell_start_.data();
-    }
-    tbb::parallel_for(size_t(0), batches_.size(), [&](size_t b) {
+    tbb::parallel_for(batch_first, batch_end, [&](size_t b) {
         Batch& batch = batches_[b];
-        std::vector<uint32_t>& cursor = batch.partition_begin;  // write cursors, then the ends
+        std::vector<uint32_t>& cursor = batch.partition_begin;  // write cursors
         const PhotonRecord* records = batch.data();
         const uint32_t* hash = batch.hash.data();
         const size_t n = batch.count();
-        if (ranks == 1) {
-            for (size_t i = 0; i < n; ++i) grid[cursor[(hash[i] & mask_) >> shift]++] = records[i];
-            return;
-        }
-        // Only this rank's partitions; the others' records go to a spare record, without a
-        // branch (which of the two is a coin toss per record).
-        PhotonRecord spare;
-        for (size_t i = 0; i < n; ++i) {
-            const uint32_t part = (hash[i] & mask_) >> shift;
-            const uint32_t own = part - own_first < own_end - own_first ? 1u : 0u;
-            PhotonRecord* to = own ? grid + cursor[part] : &spare;
-            *to = records[i];
-            cursor[part] += own;
-        }
+        for (size_t i = 0; i < n; ++i) grid[cursor[(hash[i] & mask_) >> shift]++] = records[i];
     });
+    if (shared) shared->fence();  // every batch's records in their partitions
     tbb::parallel_for(own_first, own_end, [&](size_t part) {
         const uint32_t first_slot = static_cast<uint32_t>(part) << shift, slots = 1u << shift;
         uint32_t* start = cells + first_slot;

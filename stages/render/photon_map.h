@@ -105,12 +105,15 @@ private:
 
     struct Batch {
         std::vector<PhotonRecord> records;  // traced by this process
-        // Or, with ranks, another rank's records, read in place in the exchange buffer (every
-        // rank reads every record for the sort: a copy less is work that does not shrink with N).
+        // Or, with ranks across machines, another rank's records, read in place in the exchange
+        // buffer (every rank sorts every record: a copy less is work that does not shrink with N).
         const PhotonRecord* received = nullptr;
+        // Or, with ranks on one machine, another rank's batch, of which this rank knows only the
+        // counts: its tracer puts its records into the shared grid.
+        bool elsewhere = false;
         uint32_t received_count = 0;
         const PhotonRecord* data() const { return received ? received : records.data(); }
-        size_t count() const { return received ? received_count : records.size(); }
+        size_t count() const { return received || elsewhere ? received_count : records.size(); }
         std::vector<uint32_t> partition_begin;  // where this batch's records of each partition go
         std::vector<uint32_t> hash;  // per record: hash_at(record, inv_cell_), for the grid sort
         std::vector<VolumePhoton> volume;  // medium scattering events (with a medium only)
@@ -134,6 +137,8 @@ private:
     std::vector<uint32_t> partition_start_;
     std::vector<char> exchanged_;  // every rank's batches, this rank's packed in place (kept: no reallocation per pass)
     std::vector<size_t> shares_;   // with ranks: each rank's first batch, and the batch count
+    // The shares the last trace() used (the next pass's may already be set when its grid is sorted).
+    std::vector<size_t> traced_bounds_;
     OwnTrace own_trace_;
     uint32_t mask_ = 0;
     float inv_cell_ = 1;
