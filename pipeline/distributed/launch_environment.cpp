@@ -47,7 +47,8 @@ std::string srun_without_mpi_plugin() {
         if (has(name)) return "";
     return "srun started " + std::to_string(launcher_process_count()) +
            " tasks without an MPI plugin (as with srun --mpi=none), so they cannot form one MPI job; "
-           "start them with srun --mpi=pmix (srun --mpi=list names this cluster's plugins)";
+           "start them with srun --mpi=pmix (Open MPI) or --mpi=pmi2 (MPICH); srun --mpi=list names this "
+           "cluster's plugins";
 }
 
 std::string rank_count_mismatch(int mpi_ranks) {
@@ -57,7 +58,8 @@ std::string rank_count_mismatch(int mpi_ranks) {
     return "the launcher started " + std::to_string(announced) + " processes but MPI counts " +
            std::to_string(mpi_ranks) +
            (mpi_ranks == 1 ? " (each process started MPI alone)" : "") +
-           ": this MPI library cannot talk to the launcher (under srun, try another --mpi= plugin, e.g. pmix)";
+           ": this MPI library cannot talk to the launcher (under srun: --mpi=pmix for Open MPI, --mpi=pmi2 "
+           "for MPICH)";
 }
 
 }  // namespace sl
