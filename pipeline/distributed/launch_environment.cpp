@@ -47,8 +47,8 @@ std::string srun_without_mpi_plugin() {
         if (has(name)) return "";
     return "srun started " + std::to_string(launcher_process_count()) +
            " tasks without an MPI plugin (as with srun --mpi=none), so they cannot form one MPI job; "
-           "start them with srun --mpi=pmix (Open MPI) or --mpi=pmi2 (MPICH); srun --mpi=list names this "
-           "cluster's plugins";
+           "start them with srun --mpi=pmix (Open MPI) or --mpi=pmi2 (MPICH), or set SLOWLIGHT_MPI=0 for "
+           "separate renders";
 }
 
 std::string rank_count_mismatch(int mpi_ranks) {
