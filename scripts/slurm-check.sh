@@ -1,8 +1,9 @@
 #!/bin/bash
 # Runs slowlight under a real Slurm on this one machine and checks what docs/distributed.md says
 # about Slurm: srun and mpirun-inside-an-allocation renders equal the one-process render byte for
-# byte, a killed rank ends the job with an error line, an interrupt saves a checkpoint that
-# --resume continues exactly, bad input and a missing MPI plugin are one error line.
+# byte, a killed rank ends the job with an error line, an interrupt (scancel, or Ctrl-C at
+# srun --disable-status) saves a checkpoint that --resume continues exactly, bad input and a
+# missing MPI plugin are one error line.
 #
 # Not part of CI. Needs root and Debian's Slurm and MUNGE:
 #   apt-get install -y slurmctld slurmd slurm-client munge slurm-wlm-basic-plugins
@@ -134,6 +135,16 @@ rc=$?
 [ "$rc" != 0 ] && [ "$rc" != 124 ] && grep -q '^error: the MPI launcher stopped this render' killed.err &&
     pass "rank 1 killed (srun --kill-on-bad-exit=1): srun exit $rc, rank 0's error line, no hang" ||
     fail "killed rank: exit $rc (see $work/killed.err)"
+
+timeout 120 srun -n 2 --mpi=pmix --disable-status "$bin" "${long[@]}" --checkpoint-every 0 --exr-dir ctrlc \
+    -o ctrlc.mp4 2>ctrlc.err &
+job=$!
+wait_for ctrlc/section_0000.ckpt && kill -INT "$(pgrep -x srun | head -1)"
+wait $job
+rc=$?
+[ "$rc" = 130 ] && [ -e ctrlc/section_0000.ckpt ] && grep -q 'state saved in' ctrlc.err &&
+    pass "Ctrl-C at srun --disable-status: every rank saved and exited 130" ||
+    fail "Ctrl-C at srun --disable-status: exit $rc (see $work/ctrlc.err)"
 
 "$bin" "${long[@]}" --exr-dir long -o long.mp4 2>long.err
 timeout 120 srun -n 2 --mpi=pmix "$bin" "${long[@]}" --checkpoint-every 0 --exr-dir cut -o cut.mp4 2>cut.err &
