@@ -7,7 +7,8 @@
 
 namespace sl {
 
-// This process's index among the processes launcher_process_count() announces (the launcher's variable; 0 when none says).
+// This process's index among those launcher_process_count() announces (the launcher's variable;
+// 0 when none says).
 int launcher_process_index();
 
 // Non-empty when srun started several tasks without an MPI plugin: the reason, for an error line.
