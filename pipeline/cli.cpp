@@ -51,12 +51,16 @@ namespace {
 std::atomic<bool> g_cancel{false};
 // Until outputs are opened nothing has been written, so a signal then ends the run at once.
 std::atomic<bool> g_setting_up{true};
+// Under MPI a launcher passes an interrupt to every rank: only rank 0 says so (one line per job).
+std::atomic<bool> g_signal_lines{true};
 
 extern "C" void on_signal(int) {
     if (g_setting_up.load()) {
         static const char msg[] = "slowlight: interrupted during set-up; nothing written\n";
-        ssize_t ignored = write(STDERR_FILENO, msg, sizeof msg - 1);
-        (void)ignored;
+        if (g_signal_lines.load()) {
+            ssize_t ignored = write(STDERR_FILENO, msg, sizeof msg - 1);
+            (void)ignored;
+        }
         _exit(130);
     }
     if (g_cancel.exchange(true)) {  // a second signal: stop at once, leaving no temporary behind
@@ -65,6 +69,7 @@ extern "C" void on_signal(int) {
     }
     static const char msg[] = "\nslowlight: interrupted: ending the pass in flight, then saving the section and "
                               "writing its frames (interrupt again to quit at once)\n";
+    if (!g_signal_lines.load()) return;
     ssize_t ignored = write(STDERR_FILENO, msg, sizeof msg - 1);
     (void)ignored;
 }
@@ -290,10 +295,11 @@ int run_cli(int argc, char** argv) {
     // Under an MPI launcher with several processes: MPI, through its plugin (else nothing).
     DistributedStart dist = start_distributed(argc, argv);
     if (!dist.error.empty()) {
-        std::fprintf(stderr, "error: %s\n", dist.error.c_str());
+        if (dist.report_error) std::fprintf(stderr, "error: %s\n", dist.error.c_str());
         return 1;
     }
     g_ranks.ex = dist.exchange.get();
+    g_signal_lines = g_ranks.root();
     g_ranks.concurrent_channels = dist.concurrent_channels;
     // A failure: one line and the exit status; under MPI agreed with the other ranks before the
     // render starts (rank 0 prints it), and after that the failing rank ends the job.

@@ -1,5 +1,7 @@
 #include "pipeline/distributed/mpi_launch.h"
 
+#include "pipeline/distributed/launch_environment.h"
+
 #include <dlfcn.h>
 #include <unistd.h>
 
@@ -37,6 +39,10 @@ int launcher_process_count() {
 DistributedStart start_distributed(int& argc, char**& argv) {
     DistributedStart s;
     if (launcher_process_count() < 2) return s;
+    // Launch mistakes MPI cannot report in one line: every process fails alike, the first prints.
+    s.report_error = launcher_process_index() == 0;
+    s.error = srun_without_mpi_plugin();
+    if (!s.error.empty()) return s;
     // Beside the executable, or on the library path. RTLD_GLOBAL: MPI's own components,
     // loaded by MPI_Init, look for the MPI library's symbols in the global scope.
     char exe[PATH_MAX];
@@ -64,7 +70,15 @@ DistributedStart start_distributed(int& argc, char**& argv) {
     char why[256] = {};
     int concurrent = 0;
     s.exchange.reset(start(&argc, &argv, &concurrent, why, sizeof why));
-    if (!s.exchange) s.error = std::string("cannot start MPI: ") + why;
+    if (!s.exchange) {
+        s.error = std::string("cannot start MPI: ") + why;
+        return s;
+    }
+    s.error = rank_count_mismatch(s.exchange->ranks());
+    if (!s.error.empty()) {
+        s.exchange.reset();  // MPI_Finalize: every process is alone, none waits for another
+        return s;
+    }
     s.concurrent_channels = concurrent != 0;
     return s;
 }

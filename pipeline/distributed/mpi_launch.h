@@ -17,6 +17,7 @@ struct DistributedStart {
     std::unique_ptr<RankExchange> exchange;  // null: one process, as always
     bool concurrent_channels = false;         // both channels may be busy at once
     std::string error;                        // why MPI could not start, when it should have
+    bool report_error = true;                 // this process prints `error` (one of the launched ones does)
 };
 
 DistributedStart start_distributed(int& argc, char**& argv);

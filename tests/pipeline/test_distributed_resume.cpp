@@ -99,6 +99,11 @@ void interrupt_then_resume(const ScratchDir& dir, const std::string& scene, cons
     EXPECT_EQ(interrupted.exit_code, 130) << interrupted.err;
     ASSERT_NE(interrupted.err.find("state saved in"), std::string::npos) << interrupted.err;
     ASSERT_TRUE(std::filesystem::exists(cut + "/" + ckpt));
+    // Every rank got the signal; the job says so once (rank 0), as one process would.
+    const std::string notice = "slowlight: interrupted: ending the pass";
+    size_t first = interrupted.err.find(notice);
+    EXPECT_NE(first, std::string::npos) << interrupted.err;
+    EXPECT_EQ(interrupted.err.find(notice, first + 1), std::string::npos) << interrupted.err;
 
     for (int ranks : resume_on) {
         const std::string again = dir.file("again" + std::to_string(ranks));

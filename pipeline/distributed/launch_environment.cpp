@@ -1,0 +1,65 @@
+#include "pipeline/distributed/launch_environment.h"
+
+#include <climits>
+#include <cstdlib>
+#include <string>
+
+#include "pipeline/distributed/mpi_launch.h"
+
+namespace sl {
+namespace {
+
+bool has(const char* name) {
+    const char* v = std::getenv(name);
+    return v && *v;
+}
+
+int non_negative(const char* name) {
+    const char* v = std::getenv(name);
+    if (!v || !*v) return -1;
+    char* end = nullptr;
+    long x = std::strtol(v, &end, 10);
+    return end && *end == '\0' && x >= 0 && x < INT_MAX ? static_cast<int>(x) : -1;
+}
+
+bool forced() {
+    const char* v = std::getenv("SLOWLIGHT_MPI");
+    return v && std::string(v) == "1";
+}
+
+}  // namespace
+
+int launcher_process_index() {
+    for (const char* name : {"OMPI_COMM_WORLD_RANK", "PMI_RANK", "PMIX_RANK", "SLURM_PROCID"}) {
+        int i = non_negative(name);
+        if (i >= 0) return i;
+    }
+    return 0;
+}
+
+std::string srun_without_mpi_plugin() {
+    if (forced() || launcher_process_count() < 2) return "";
+    // A task of an srun step (not srun's batch script, which has no step id) ...
+    if (!has("SLURM_STEP_ID") || !has("SLURM_PROCID")) return "";
+    // ... that no process-management interface reaches: srun's PMIx or PMI-2 plugin, or an MPI
+    // launcher (mpirun, Hydra) started inside the step, would have set one of these.
+    for (const char* name : {"PMIX_RANK", "PMI_FD", "PMI_SIZE", "PMI_RANK", "OMPI_COMM_WORLD_SIZE"})
+        if (has(name)) return "";
+    return "srun started " + std::to_string(launcher_process_count()) +
+           " tasks without an MPI plugin (as with srun --mpi=none), so they cannot form one MPI job; "
+           "start them with srun --mpi=pmix (Open MPI) or --mpi=pmi2 (MPICH), or set SLOWLIGHT_MPI=0 for "
+           "separate renders";
+}
+
+std::string rank_count_mismatch(int mpi_ranks) {
+    if (forced()) return "";
+    int announced = launcher_process_count();
+    if (announced < 2 || mpi_ranks == announced) return "";
+    return "the launcher started " + std::to_string(announced) + " processes but MPI counts " +
+           std::to_string(mpi_ranks) +
+           (mpi_ranks == 1 ? " (each process started MPI alone)" : "") +
+           ": this MPI library cannot talk to the launcher (under srun: --mpi=pmix for Open MPI, --mpi=pmi2 "
+           "for MPICH)";
+}
+
+}  // namespace sl
