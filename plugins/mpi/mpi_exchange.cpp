@@ -202,7 +202,15 @@ private:
             const int rc = MPI_Win_allocate_shared(static_cast<MPI_Aint>(capacity_[static_cast<size_t>(ex_.rank_)]), 1,
                                                    info, ex_.comm(ch_), &base, &win_);
             MPI_Info_free(&info);
-            ex_.check(rc, "MPI_Win_allocate_shared");
+            if (rc != MPI_SUCCESS) {  // most often: the shared-memory file system is too small
+                std::fprintf(stderr,
+                             "error: rank %d of %d: cannot map %.1f MiB of memory shared with the other ranks of this "
+                             "machine (MPI_Win_allocate_shared failed; is /dev/shm large enough?); "
+                             "SLOWLIGHT_RANKS_AS_NODES=1 copies the photons between the ranks instead\n",
+                             ex_.rank_, ex_.size_,
+                             static_cast<double>(capacity_[static_cast<size_t>(ex_.rank_)]) / (1024.0 * 1024.0));
+                ex_.abort(1);
+            }
             MPI_Win_set_errhandler(win_, MPI_ERRORS_RETURN);
             ex_.check(MPI_Win_lock_all(MPI_MODE_NOCHECK, win_), "MPI_Win_lock_all");
             for (int r = 0; r < ex_.size_; ++r) {
