@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <climits>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -219,6 +220,11 @@ private:
                 void* at = nullptr;
                 ex_.check(MPI_Win_shared_query(win_, r, &size, &unit, &at), "MPI_Win_shared_query");
                 block_[static_cast<size_t>(r)] = static_cast<char*>(at);
+                if (reinterpret_cast<uintptr_t>(at) % 8 != 0) {  // records hold doubles
+                    std::fprintf(stderr, "error: rank %d of %d: MPI_Win_shared_query gave rank %d's block at an address "
+                                         "not aligned to 8 bytes\n", ex_.rank_, ex_.size_, r);
+                    ex_.abort(1);
+                }
             }
         }
         char* block(int rank) const override { return block_[static_cast<size_t>(rank)]; }

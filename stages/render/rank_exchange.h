@@ -47,7 +47,7 @@ inline constexpr int kChannels = 3;
 
 // Memory that the ranks of one machine map together (RankExchange::one_node only): one block
 // per rank, which its rank alone writes and every rank reads. On one machine this replaces
-// copying the photon records from rank to rank twice a pass. Kept by the exchange for the job.
+// sending the photon records from rank to rank. Kept by the exchange for the job.
 class SharedBlocks {
 public:
     virtual ~SharedBlocks() = default;
@@ -55,15 +55,16 @@ public:
     // rank's block holds at least `bytes`, and asked(r) is what rank r asked for. The blocks keep
     // their contents unless some rank's block had to grow.
     virtual void reserve(uint64_t bytes) = 0;
-    virtual char* block(int rank) const = 0;  // 64-byte aligned
+    virtual char* block(int rank) const = 0;  // 8-byte aligned at least (checked)
     virtual uint64_t asked(int rank) const = 0;
     virtual uint64_t capacity(int rank) const = 0;
     // Collective: every rank's writes to the blocks before it are seen by every rank after it.
     virtual void fence() = 0;
 };
 
-// The block sets a render shares: the photon records each rank traced, and the photon grid
-// (its records and cell starts, in rank 0's block; each rank sorts its part into it).
+// The block sets a render shares: Traced, each rank's batch counts and volume photons; Grid, the
+// photon grid (its records and cell starts, in rank 0's block: each rank places and sorts its
+// part of it there) and, at the end of every rank's block, its batches' partition counts.
 enum class Shared { Traced = 0, Grid = 1 };
 inline constexpr int kSharedSets = 2;
 
@@ -100,9 +101,9 @@ public:
     // Ends every rank of the job at once (after this rank printed why).
     [[noreturn]] virtual void abort(int code) = 0;
 
-    // Whether every rank runs on one machine: there the ranks map the photon records and the
-    // photon grid together (shared), divide the grid's sort among themselves and copy nothing
-    // between them; across a network they all-gather the records and each sorts the grid whole.
+    // Whether every rank runs on one machine: there the ranks map the photon grid together
+    // (shared), divide its sort among themselves and send no record; across a network they
+    // all-gather the records and each sorts the grid whole.
     bool one_node = false;
 
     // Rank 0's receive buffer for gathered images, per channel, kept from frame to frame: a
