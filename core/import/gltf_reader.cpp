@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <map>
 #include <set>
+#include <stdexcept>
 #include <tuple>
 
 #include "foundation/constants.h"
@@ -169,8 +170,17 @@ private:
             if (got < 4) fail("is too short to be glTF");
         }
         const bool binary = std::memcmp(magic, "glTF", 4) == 0;
-        bool ok = binary ? loader.LoadBinaryFromFile(&model_, &err, &warn, path_)
-                         : loader.LoadASCIIFromFile(&model_, &err, &warn, path_);
+        bool ok = false;
+        try {
+            ok = binary ? loader.LoadBinaryFromFile(&model_, &err, &warn, path_)
+                        : loader.LoadASCIIFromFile(&model_, &err, &warn, path_);
+        } catch (const std::out_of_range&) {
+            // tinygltf reads some parts with at(): a binary file whose first buffer claims 0 bytes
+            // (found by fuzzing) throws instead of returning an error.
+            fail("is malformed: an index or a length in it is out of range");
+        } catch (const std::exception& e) {
+            fail(std::string("cannot be parsed as glTF (") + e.what() + ")");
+        }
         if (!ok) {
             std::string msg = err.empty() ? "cannot be parsed as glTF" : err;
             for (char& c : msg) if (c == '\n' || c == '\r') c = ' ';

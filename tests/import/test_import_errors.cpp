@@ -128,6 +128,21 @@ TEST(ImportErrors, GltfFaults) {
     EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;
 }
 
+// Found by fuzzing: a binary glTF whose buffer claims 0 bytes beside a BIN chunk made tinygltf
+// throw std::out_of_range out of its loader (the program ended with exit status 1).
+TEST(ImportErrors, GltfBinaryBufferOfZeroBytes) {
+    TempDir dir;
+    std::string json = R"({"asset":{"version":"2.0"},"buffers":[{"byteLength":0}]})";
+    while (json.size() % 4) json += ' ';
+    const std::string bin(8, '\0');
+    auto u32 = [](uint32_t v) { return std::string(reinterpret_cast<const char*>(&v), 4); };
+    const std::string glb = "glTF" + u32(2) + u32(static_cast<uint32_t>(12 + 8 + json.size() + 8 + bin.size())) +
+                            u32(static_cast<uint32_t>(json.size())) + "JSON" + json +
+                            u32(static_cast<uint32_t>(bin.size())) + std::string("BIN\0", 4) + bin;
+    std::ofstream(dir.file("zero.glb"), std::ios::binary) << glb;
+    expect_rejected(dir.file("zero.glb"), "zero.glb", "out of range");
+}
+
 TEST(ImportErrors, GltfIndexOutOfRangeAndNonFiniteVertex) {
     TempDir dir;
     ModelMesh m;
