@@ -139,7 +139,8 @@ rc=$?
 timeout 120 srun -n 2 --mpi=pmix --disable-status "$bin" "${long[@]}" --checkpoint-every 0 --exr-dir ctrlc \
     -o ctrlc.mp4 2>ctrlc.err &
 job=$!
-wait_for ctrlc/section_0000.ckpt && kill -INT "$(pgrep -x srun | head -1)"
+# srun is timeout's child: the first srun by pid may be an earlier step's, not yet reaped.
+wait_for ctrlc/section_0000.ckpt && kill -INT "$(pgrep -P "$job" -x srun)"
 wait $job
 rc=$?
 [ "$rc" = 130 ] && [ -e ctrlc/section_0000.ckpt ] && grep -q 'state saved in' ctrlc.err &&
