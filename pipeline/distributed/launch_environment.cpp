@@ -4,8 +4,6 @@
 #include <cstdlib>
 #include <string>
 
-#include "pipeline/distributed/mpi_launch.h"
-
 namespace sl {
 namespace {
 
@@ -14,24 +12,39 @@ bool has(const char* name) {
     return v && *v;
 }
 
-int non_negative(const char* name) {
+// The variable as a whole decimal number of at least `least`, else -1.
+int env_int(const char* name, long least) {
     const char* v = std::getenv(name);
     if (!v || !*v) return -1;
     char* end = nullptr;
     long x = std::strtol(v, &end, 10);
-    return end && *end == '\0' && x >= 0 && x < INT_MAX ? static_cast<int>(x) : -1;
+    return end && *end == '\0' && x >= least && x < INT_MAX ? static_cast<int>(x) : -1;
 }
 
-bool forced() {
+// SLOWLIGHT_MPI: "0" turns MPI off under a launcher, "1" forces it, anything else leaves it to
+// the launcher's variables.
+bool mpi_switch(const char* value) {
     const char* v = std::getenv("SLOWLIGHT_MPI");
-    return v && std::string(v) == "1";
+    return v && std::string(v) == value;
 }
+bool forced() { return mpi_switch("1"); }
 
 }  // namespace
 
+int launcher_process_count() {
+    if (mpi_switch("0")) return 1;
+    int n = -1;
+    if (n < 0) n = env_int("OMPI_COMM_WORLD_SIZE", 1);  // Open MPI's mpirun / mpiexec
+    if (n < 0) n = env_int("PMI_SIZE", 1);              // MPICH's Hydra, srun --mpi=pmi2
+    if (n < 0 && std::getenv("PMIX_RANK")) n = env_int("SLURM_STEP_NUM_TASKS", 1);  // srun --mpi=pmix
+    if (n < 0 && std::getenv("SLURM_STEP_ID") && std::getenv("SLURM_PROCID")) n = env_int("SLURM_STEP_NUM_TASKS", 1);
+    if (forced() && n < 2) n = 2;  // let MPI itself say how many
+    return n > 1 ? n : 1;
+}
+
 int launcher_process_index() {
     for (const char* name : {"OMPI_COMM_WORLD_RANK", "PMI_RANK", "PMIX_RANK", "SLURM_PROCID"}) {
-        int i = non_negative(name);
+        int i = env_int(name, 0);
         if (i >= 0) return i;
     }
     return 0;

@@ -7,6 +7,10 @@
 
 namespace sl {
 
+// The number of processes the launcher's environment announces (Open MPI's mpirun, MPICH's
+// Hydra, Slurm's srun with PMI-2 or PMIx), or 1. SLOWLIGHT_MPI=0 turns MPI off, =1 forces it.
+int launcher_process_count();
+
 // This process's index among those launcher_process_count() announces (the launcher's variable;
 // 0 when none says).
 int launcher_process_index();

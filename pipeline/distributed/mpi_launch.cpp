@@ -1,7 +1,5 @@
 #include "pipeline/distributed/mpi_launch.h"
 
-#include "pipeline/distributed/launch_environment.h"
-
 #include <dlfcn.h>
 #include <unistd.h>
 
@@ -12,29 +10,9 @@
 namespace sl {
 namespace {
 
-int env_int(const char* name) {
-    const char* v = std::getenv(name);
-    if (!v || !*v) return 0;
-    char* end = nullptr;
-    long x = std::strtol(v, &end, 10);
-    return end && *end == '\0' && x > 0 && x < INT_MAX ? static_cast<int>(x) : 0;
-}
-
 using StartFn = RankExchange* (*)(int*, char***, int*, char*, size_t);
 
 }  // namespace
-
-int launcher_process_count() {
-    const char* force = std::getenv("SLOWLIGHT_MPI");
-    if (force && std::string(force) == "0") return 1;
-    int n = 0;
-    if (!n) n = env_int("OMPI_COMM_WORLD_SIZE");  // Open MPI's mpirun / mpiexec
-    if (!n) n = env_int("PMI_SIZE");              // MPICH's Hydra, srun --mpi=pmi2
-    if (!n && std::getenv("PMIX_RANK")) n = env_int("SLURM_STEP_NUM_TASKS");  // srun --mpi=pmix
-    if (!n && std::getenv("SLURM_STEP_ID") && std::getenv("SLURM_PROCID")) n = env_int("SLURM_STEP_NUM_TASKS");
-    if (force && std::string(force) == "1" && n < 2) n = 2;  // let MPI itself say how many
-    return n > 1 ? n : 1;
-}
 
 DistributedStart start_distributed(int& argc, char**& argv) {
     DistributedStart s;

@@ -5,13 +5,10 @@
 #include <memory>
 #include <string>
 
+#include "pipeline/distributed/launch_environment.h"
 #include "stages/render/rank_exchange.h"
 
 namespace sl {
-
-// The number of processes the launcher's environment announces (Open MPI's mpirun, MPICH's
-// Hydra, Slurm's srun with PMI-2 or PMIx), or 1. SLOWLIGHT_MPI=0 turns MPI off, =1 forces it.
-int launcher_process_count();
 
 struct DistributedStart {
     std::unique_ptr<RankExchange> exchange;  // null: one process, as always
