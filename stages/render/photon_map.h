@@ -73,7 +73,10 @@ public:
     };
     const OwnTrace& own_trace() const { return own_trace_; }
 
-    static constexpr int kBatch = 4096;     // photon paths per task
+    // Photon paths per task (and per random stream). Small enough that the last tasks of a pass
+    // leave the other threads little idle time (4096 left up to a twelfth of a 100k-photon pass
+    // on one thread of two), large enough that a task's fixed costs do not show.
+    static constexpr int kBatch = 1024;
     static constexpr int kPartitionBits = 6;  // the sort's first, parallel, radix step
     // The batches rank `rank` of `ranks` traces: a contiguous share, [first, end).
     static size_t first_batch(size_t nbatches, int rank, int ranks) {
