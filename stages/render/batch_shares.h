@@ -1,7 +1,7 @@
 #pragma once
 // Which photon batches each MPI rank traces, balanced by what the ranks' work costs rather than
 // by count. Every pass ends with all ranks waiting for the slowest at the photon exchange, so a
-// rank that is slower (more photons: 200,000 photons are 48 batches of 4096 and one of 3392; a
+// rank that is slower (more photons: 200,000 photons are 195 batches of 1024 and one of 320; a
 // core shared with another process; more expensive pixels) makes every other rank idle. Each
 // batch keeps its own random stream and its place in the map whoever traces it, so any split
 // gives the same photon map, bit for bit: only the waiting changes.
