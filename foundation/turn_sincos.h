@@ -3,14 +3,12 @@
 // sincosf was an eighth of the photon pass. The turn is cut into octants, so the polynomials only
 // ever see [0, pi/4], where their truncation error (x^11/11!, x^10/10!: below 2e-9) is far under
 // a float's rounding; the result is within a few ulp of std::sin/std::cos of 2 pi u.
-#include <cstdint>
-
 #include "foundation/constants.h"
 
 namespace sl {
 
-// (cos, sin) of 2 pi u for u in [0, 1) (any u with 8u exact in a float; the renderer's uniforms are
-// 24-bit).
+// (cos, sin) of 2 pi u for u in [0, 1). 8u and its fraction are exact in float arithmetic, so
+// what rounds is the angle (times pi/4) and the polynomials.
 inline void turn_sincos(float u, float& c, float& s) {
     const float a = u * 8;  // exact: a power of two
     const int octant = static_cast<int>(a) & 7;
