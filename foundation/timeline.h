@@ -60,4 +60,28 @@ struct Timeline {
     }
 };
 
+// Timeline::bucket() for many arrival times in a row (the gathers ask it for every photon): Δ and
+// 1/Δ are computed once, and the division becomes a multiplication. Its estimate is within one
+// bucket of the division's while |(t - start) / Δ| < 2^40, and both are settled against the same
+// edges, so every answer equals bucket()'s; beyond that, at or after the end and for NaN (rare
+// arrivals), bucket() itself answers.
+class BucketFinder {
+public:
+    explicit BucketFinder(const Timeline& tl) : tl_(tl), delta_(tl.delta()), inv_delta_(1.0 / delta_) {}
+    int64_t operator()(double t) const {
+        const double q = (t - tl_.start_ns) * inv_delta_;
+        if (!(t < tl_.end_ns) || !(std::fabs(q) < 0x1p40)) return tl_.bucket(t);
+        int64_t j = static_cast<int64_t>(q);  // toward zero, then down: floor(q)
+        if (static_cast<double>(j) > q) --j;
+        if (edge(j) > t) --j;
+        else if (edge(j + 1) <= t) ++j;
+        return j;
+    }
+
+private:
+    double edge(int64_t k) const { return k == tl_.frames ? tl_.end_ns : tl_.start_ns + static_cast<double>(k) * delta_; }
+    Timeline tl_;
+    double delta_, inv_delta_;
+};
+
 }  // namespace sl

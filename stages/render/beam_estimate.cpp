@@ -10,7 +10,7 @@ namespace sl {
 void gather_volume_at(const RenderContext& ctx, const PixelSegments& segments, const VolumePhotonMap& photons,
                       int64_t photons_emitted, size_t pixel, SectionBuffer& buffer, BeamCounters& counters) {
     const HomogeneousMedium& medium = *ctx.medium;
-    const Timeline& tl = ctx.timeline;
+    const BucketFinder bucket(ctx.timeline);  // every photon along the segments asks it
     const SectionLayout& layout = buffer.layout;
     const bool tof = ctx.scene.render.camera_tof;
     const double r2 = buffer.volume_radius2;
@@ -35,7 +35,7 @@ void gather_volume_at(const RenderContext& ctx, const PixelSegments& segments, c
             const float k = static_cast<float>(n_inv / (kPi * static_cast<double>(q)));
             const Vec3 L = sg.beta * (k * ph_fn) * medium.transmittance(s) * ph.flux;
             const double t = ph.t_ns + (tof ? back0 + static_cast<double>(s * inv_c) : 0.0);
-            const int slot = layout.slot_of_bucket(tl.bucket(t));
+            const int slot = layout.slot_of_bucket(bucket(t));
             if (slot < 0) return;
             float* acc = buffer.slot(pixel, slot);
             acc[0] += L.x;

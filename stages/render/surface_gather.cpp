@@ -9,7 +9,7 @@ namespace sl {
 uint32_t gather_surface_at(const RenderContext& ctx, const VisiblePoint& vp, const PhotonMap& photons,
                            int64_t photons_emitted, size_t pixel, SectionBuffer& buffer,
                            DepositQueue& deposits) {
-    const Timeline& tl = ctx.timeline;
+    const BucketFinder bucket(ctx.timeline);  // every photon found asks it
     const SectionLayout& layout = buffer.layout;
     // Normals closer than ~45 degrees count as the same surface: keeps corners from leaking.
     constexpr float kSameSurface = 0.7f;
@@ -28,7 +28,7 @@ uint32_t gather_surface_at(const RenderContext& ctx, const VisiblePoint& vp, con
         if (c <= 0 || c * c < kSameSurface * kSameSurface * dot(pn, pn)) return;
         if (ph.depth > vp.depth_left) return;
         ++found;
-        const int s = layout.slot_of_bucket(tl.bucket(ph.t_ns + vp.camera_ns));
+        const int s = layout.slot_of_bucket(bucket(ph.t_ns + vp.camera_ns));
         if (s < 0) return;
         deposits.add(buffer.slot(pixel, s), wr * ph.r, wg * ph.g, wb * ph.b);
     });
