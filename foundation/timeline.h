@@ -34,8 +34,17 @@ struct Timeline {
     }
     // The frame edge: start + k * delta (k = frames gives exactly end). Frame k spans
     // [edge(k), edge(k + 1)).
-    double edge(int64_t k) const {
-        return k == frames ? end_ns : start_ns + static_cast<double>(k) * delta();
+    double edge(int64_t k) const { return edge_at(k, delta()); }
+    // The same edge for a Δ the caller computed once (BucketFinder): the one formula for both.
+    double edge_at(int64_t k, double d) const {
+        return k == frames ? end_ns : start_ns + static_cast<double>(k) * d;
+    }
+    // An estimate j of t's bucket, off by at most one (a rounded division or multiplication),
+    // settled against the edges themselves; d is delta().
+    int64_t settle(int64_t j, double t, double d) const {
+        if (edge_at(j, d) > t) return j - 1;
+        if (edge_at(j + 1, d) <= t) return j + 1;
+        return j;
     }
     // The whole-frames check: the number of frame widths in width_ns (rounded), when width_ns
     // is a whole number >= 1 of them within kWholeTolerance relative; nothing otherwise. The
@@ -52,11 +61,8 @@ struct Timeline {
         if (t >= end_ns) return frames + static_cast<int64_t>(std::min(std::floor((t - end_ns) / delta()), 4e18));
         double x = std::floor((t - start_ns) / delta());
         if (x < -4e18) return std::numeric_limits<int64_t>::min() / 2;
-        int64_t j = static_cast<int64_t>(x);
         // The division can round across an edge: settle it against the edges themselves.
-        if (edge(j) > t) --j;
-        else if (edge(j + 1) <= t) ++j;
-        return j;
+        return settle(static_cast<int64_t>(x), t, delta());
     }
 };
 
@@ -73,13 +79,10 @@ public:
         if (!(t < tl_.end_ns) || !(std::fabs(q) < 0x1p40)) return tl_.bucket(t);
         int64_t j = static_cast<int64_t>(q);  // toward zero, then down: floor(q)
         if (static_cast<double>(j) > q) --j;
-        if (edge(j) > t) --j;
-        else if (edge(j + 1) <= t) ++j;
-        return j;
+        return tl_.settle(j, t, delta_);
     }
 
 private:
-    double edge(int64_t k) const { return k == tl_.frames ? tl_.end_ns : tl_.start_ns + static_cast<double>(k) * delta_; }
     Timeline tl_;
     double delta_, inv_delta_;
 };
