@@ -79,6 +79,11 @@ void SceneGeometry::add_triangles(const std::vector<Vec3>& v, const std::vector<
         bmax_ = vmax(bmax_, v[i]);
     }
     std::memcpy(ib, idx.data(), idx.size() * sizeof(uint32_t));
+    attach(g, material, light, std::move(mesh));
+    triangles_ += idx.size() / 3;
+}
+
+unsigned SceneGeometry::attach(RTCGeometry g, int material, int light, std::shared_ptr<const MeshData> mesh) {
     rtcCommitGeometry(g);
     unsigned id = rtcAttachGeometry(scene_, g);
     rtcReleaseGeometry(g);
@@ -90,7 +95,7 @@ void SceneGeometry::add_triangles(const std::vector<Vec3>& v, const std::vector<
     geom_material_[id] = material;
     geom_light_[id] = light;
     geom_mesh_[id] = std::move(mesh);
-    triangles_ += idx.size() / 3;
+    return id;
 }
 
 void SceneGeometry::add_sphere(Vec3 c, float r, int material) {
@@ -99,15 +104,7 @@ void SceneGeometry::add_sphere(Vec3 c, float r, int material) {
                                                            RTC_FORMAT_FLOAT4, 4 * sizeof(float), 1));
     if (!vb) throw RuntimeFailure("Embree could not allocate a sphere buffer");
     vb[0] = c.x; vb[1] = c.y; vb[2] = c.z; vb[3] = r;
-    rtcCommitGeometry(g);
-    unsigned id = rtcAttachGeometry(scene_, g);
-    rtcReleaseGeometry(g);
-    if (geom_material_.size() <= id) {
-        geom_material_.resize(id + 1, -1);
-        geom_light_.resize(id + 1, -1);
-        geom_mesh_.resize(id + 1);
-    }
-    geom_material_[id] = material;
+    attach(g, material, -1, nullptr);
     bmin_ = vmin(bmin_, c - Vec3(r));
     bmax_ = vmax(bmax_, c + Vec3(r));
 }
