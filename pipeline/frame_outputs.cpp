@@ -95,6 +95,10 @@ FrameOutputs::FrameOutputs(const OutputSettings& s) : settings_(s), exposure_(s.
     if (!s.cube.empty()) cube_ = std::make_unique<NpyCubeWriter>(s.cube, s.timeline.frames + 2, s.height, s.width);
     if (s.label_time && (encoder_ || !s.png_dir.empty())) label_ = std::make_unique<TimeLabel>(s.width, s.height);
     rgb8_.resize(static_cast<size_t>(s.width) * s.height * 3);
+    if (encoder_) {
+        rgb8_encoding_.resize(rgb8_.size());
+        encoding_.emplace();
+    }
 }
 
 std::string FrameOutputs::exr_frame_path(int index) const { return numbered(settings_.exr_dir, "exr", index); }
@@ -128,7 +132,11 @@ void FrameOutputs::write_frame(int index, const std::vector<float>& rgb, bool on
                 label_->burn(rgb8_.data(), format_frame_time(settings_.timeline.edge(index + 1), settings_.timeline.delta()));
             if (!settings_.png_dir.empty())
                 seconds_png += timed([&] { write_png(numbered(settings_.png_dir, "png", index), w, h, rgb8_.data()); });
-            if (encoder_) seconds_video += timed([&] { encoder_->write_frame(rgb8_.data()); });
+            if (encoder_) {
+                encoding_->wait();  // the frame before (rethrows its failure); its buffer is free again
+                rgb8_.swap(rgb8_encoding_);
+                encoding_->run([this] { seconds_video += timed([&] { encoder_->write_frame(rgb8_encoding_.data()); }); });
+            }
         }
     } catch (...) {
         exr.wait();  // the task reads rgb and this frame's settings: let it end first
@@ -173,6 +181,7 @@ void FrameOutputs::write_cube_plane(const std::vector<float>& rgb) {
 }
 
 void FrameOutputs::finish() {
+    if (encoding_) encoding_->wait();
     if (encoder_) seconds_video += timed([&] { encoder_->finish(); });
     if (cube_ && cube_->planes_written() == settings_.timeline.frames + 2) {
         cube_->finish();

@@ -2,7 +2,8 @@
 // Where finished frames go: linear EXR files, tone-mapped PNGs, the video encoder and the
 // transient cube. All of them are opened (and checked) before rendering starts. Not thread
 // safe: in the pipeline only the write stage calls it (its tone-mapping scratch buffer rgb8_
-// is shared by frames and the steady image).
+// is shared by frames and the steady image). The video encoder runs one frame behind, on
+// another thread, while the next frame is assembled and tone-mapped.
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -12,6 +13,7 @@
 
 #include "config/run_options.h"
 #include "foundation/timeline.h"
+#include "pipeline/background_worker.h"
 #include "pipeline/exposure.h"
 #include "pipeline/frame_sink.h"
 #include "stages/output/exr_header_scan.h"
@@ -54,7 +56,9 @@ public:
     void write_frame(int index, const std::vector<float>& rgb, bool on_disk = false, const Metadata& extra = {}) override;
     void write_steady(const std::vector<float>& rgb, const Metadata& extra = {}) override;
     void write_cube_plane(const std::vector<float>& rgb) override;
-    void finish();  // closes the video so that it plays, and the cube
+    // Closes the video so that it plays, and the cube. An encoder failure surfaces here or at
+    // the next write_frame (the encoder is a frame behind).
+    void finish();
 
     std::string exr_frame_path(int index) const;
     std::string exr_steady_path() const;
@@ -75,6 +79,11 @@ private:
     std::unique_ptr<VideoEncoder> encoder_;
     std::unique_ptr<NpyCubeWriter> cube_;
     std::vector<uint8_t> rgb8_;
+    // The frame the encoder is reading, on a thread of its own: with one thread for the whole
+    // chain the encoder set the pace of a run's tail (x264 took 5 of its 7 ms a 512x512 frame).
+    std::vector<uint8_t> rgb8_encoding_;
+    // Last: it stops (ending its frame) before what it reads goes. Only with a video.
+    std::optional<BackgroundWorker> encoding_;
 };
 
 }  // namespace sl
