@@ -83,7 +83,7 @@ void SceneGeometry::add_triangles(const std::vector<Vec3>& v, const std::vector<
     triangles_ += idx.size() / 3;
 }
 
-unsigned SceneGeometry::attach(RTCGeometry g, int material, int light, std::shared_ptr<const MeshData> mesh) {
+void SceneGeometry::attach(RTCGeometry g, int material, int light, std::shared_ptr<const MeshData> mesh) {
     rtcCommitGeometry(g);
     unsigned id = rtcAttachGeometry(scene_, g);
     rtcReleaseGeometry(g);
@@ -95,7 +95,6 @@ unsigned SceneGeometry::attach(RTCGeometry g, int material, int light, std::shar
     geom_material_[id] = material;
     geom_light_[id] = light;
     geom_mesh_[id] = std::move(mesh);
-    return id;
 }
 
 void SceneGeometry::add_sphere(Vec3 c, float r, int material) {

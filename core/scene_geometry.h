@@ -48,8 +48,8 @@ private:
     void add_triangles(const std::vector<Vec3>& v, const std::vector<uint32_t>& idx, int material, int light,
                        std::shared_ptr<const MeshData> mesh = nullptr);
     void add_sphere(Vec3 center, float radius, int material);
-    // Commits g, attaches it to the scene and records what its hits mean; returns its ID.
-    unsigned attach(RTCGeometry g, int material, int light, std::shared_ptr<const MeshData> mesh);
+    // Commits g, attaches it to the scene and records what its hits mean (by its Embree ID).
+    void attach(RTCGeometry g, int material, int light, std::shared_ptr<const MeshData> mesh);
 
     RTCDevice device_ = nullptr;
     RTCScene scene_ = nullptr;
