@@ -95,10 +95,7 @@ FrameOutputs::FrameOutputs(const OutputSettings& s) : settings_(s), exposure_(s.
     if (!s.cube.empty()) cube_ = std::make_unique<NpyCubeWriter>(s.cube, s.timeline.frames + 2, s.height, s.width);
     if (s.label_time && (encoder_ || !s.png_dir.empty())) label_ = std::make_unique<TimeLabel>(s.width, s.height);
     rgb8_.resize(static_cast<size_t>(s.width) * s.height * 3);
-    if (encoder_) {
-        rgb8_encoding_.resize(rgb8_.size());
-        encoding_.emplace();
-    }
+    if (encoder_) encoding_.emplace();
 }
 
 std::string FrameOutputs::exr_frame_path(int index) const { return numbered(settings_.exr_dir, "exr", index); }
@@ -133,9 +130,13 @@ void FrameOutputs::write_frame(int index, const std::vector<float>& rgb, bool on
             if (!settings_.png_dir.empty())
                 seconds_png += timed([&] { write_png(numbered(settings_.png_dir, "png", index), w, h, rgb8_.data()); });
             if (encoder_) {
-                encoding_->wait();  // the frame before (rethrows its failure); its buffer is free again
-                rgb8_.swap(rgb8_encoding_);
-                encoding_->run([this] { seconds_video += timed([&] { encoder_->write_frame(rgb8_encoding_.data()); }); });
+                // Converted here, into the staging frame the encoder is not reading, while the
+                // frame before is still being encoded.
+                const int slot = static_cast<int>(frames_written % 2);
+                const double convert_s = timed([&] { encoder_->convert(rgb8_.data(), slot); });
+                encoding_->wait();  // the frame before (rethrows its failure)
+                seconds_video += convert_s;
+                encoding_->run([this, slot] { seconds_video += timed([&] { encoder_->send(slot); }); });
             }
         }
     } catch (...) {

@@ -3,7 +3,7 @@
 // transient cube. All of them are opened (and checked) before rendering starts. Not thread
 // safe: in the pipeline only the write stage calls it (its tone-mapping scratch buffer rgb8_
 // is shared by frames and the steady image). The video encoder runs one frame behind, on
-// another thread, while the next frame is assembled and tone-mapped.
+// another thread, while the next frame is assembled, tone-mapped and converted.
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -79,10 +79,9 @@ private:
     std::unique_ptr<VideoEncoder> encoder_;
     std::unique_ptr<NpyCubeWriter> cube_;
     std::vector<uint8_t> rgb8_;
-    // The frame the encoder is reading, on a thread of its own: with one thread for the whole
-    // chain the encoder set the pace of a run's tail (x264 took 5 of its 7 ms a 512x512 frame).
-    std::vector<uint8_t> rgb8_encoding_;
-    // Last: it stops (ending its frame) before what it reads goes. Only with a video.
+    // The encoder, on a thread of its own: with one thread for the whole chain it set the pace
+    // of a run's tail (x264 took 5 of its 7 ms a 512x512 frame). Last: it stops (ending its
+    // frame) before what it reads goes. Only with a video.
     std::optional<BackgroundWorker> encoding_;
 };
 

@@ -42,10 +42,10 @@ uint64_t fixed_overhead_bytes(const SceneDesc& scene) {
     uint64_t per_path = static_cast<uint64_t>(std::clamp(scene.render.max_depth - 1, 1, 4));
     uint64_t records = static_cast<uint64_t>(scene.render.photons_per_pass) * per_path;
     uint64_t photons = records * (2 * sizeof(PhotonRecord) + 2 * 4) + 4 * records * 2 * 4;
-    // Frames on their way out: a running sum (double), three float frames, two 8-bit frames
-    // (one tone-mapped while the other is encoded), and the encoder's own look-ahead (x264
-    // keeps some tens of frames in 4:2:0); and the float frame a section carries over to the
-    // next (constant light).
+    // Frames on their way out: a running sum (double), three float frames, an 8-bit frame, a
+    // second frame in the codec's format (one is converted while the other is encoded), and
+    // the encoder's own look-ahead (x264 keeps some tens of frames in 4:2:0); and the float
+    // frame a section carries over to the next (constant light).
     uint64_t frames = pixels * (3 * 8 + 4 * 3 * 4 + 2 * 3);
     // A medium (with some extinction): volume photons, budgeted like surface records (up to 4
     // events a path), each in its batch, concatenated, in leaf order (position + payload), with

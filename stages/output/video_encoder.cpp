@@ -8,6 +8,7 @@ extern "C" {
 #include <libswscale/swscale.h>
 }
 
+#include <atomic>
 #include <cerrno>
 #include <csignal>
 #include <cctype>
@@ -140,13 +141,14 @@ struct VideoEncoder::State {
     AVCodecContext* codec = nullptr;
     AVStream* stream = nullptr;
     SwsContext* sws = nullptr;
-    AVFrame* frame = nullptr;
+    // Two frames to convert into: one may be converted while the other is being encoded.
+    AVFrame* staged[2] = {nullptr, nullptr};
     AVPacket* packet = nullptr;
 
     int width = 0, height = 0;
     int64_t frames = 0;
     bool finished = false;
-    bool failed = false;
+    std::atomic<bool> failed{false};  // set by whichever thread meets the failure
 
     ~State() { release(); }
 
@@ -169,7 +171,8 @@ struct VideoEncoder::State {
         renamed_at_end = false;
         sws_freeContext(sws);
         sws = nullptr;
-        av_frame_free(&frame);
+        av_frame_free(&staged[0]);
+        av_frame_free(&staged[1]);
         av_packet_free(&packet);
         avcodec_free_context(&codec);
         avformat_free_context(fmt);
@@ -212,9 +215,10 @@ struct VideoEncoder::State {
               "cannot create the container");
         stream = avformat_new_stream(fmt, nullptr);
         codec = avcodec_alloc_context3(encoder);
-        frame = av_frame_alloc();
+        staged[0] = av_frame_alloc();
+        staged[1] = av_frame_alloc();
         packet = av_packet_alloc();
-        if (!stream || !codec || !frame || !packet) fail("out of memory", AVERROR(ENOMEM));
+        if (!stream || !codec || !staged[0] || !staged[1] || !packet) fail("out of memory", AVERROR(ENOMEM));
 
         // Exact rate: pts counts frames, so the time base is the inverse of the frame rate.
         const AVRational rate = av_d2q(vs.fps, 100000);
@@ -247,15 +251,17 @@ struct VideoEncoder::State {
             check(avio_open(&fmt->pb, target.c_str(), AVIO_FLAG_WRITE), "cannot open for writing");
         check(avformat_write_header(fmt, nullptr), "cannot write the header");
 
-        frame->format = codec->pix_fmt;
-        frame->width = width;
-        frame->height = height;
-        check(av_frame_get_buffer(frame, 0), "cannot allocate a frame");
-        frame->color_primaries = codec->color_primaries;
-        frame->color_trc = codec->color_trc;
-        frame->colorspace = codec->colorspace;
-        frame->color_range = codec->color_range;
-        frame->sample_aspect_ratio = codec->sample_aspect_ratio;
+        for (AVFrame* frame : staged) {
+            frame->format = codec->pix_fmt;
+            frame->width = width;
+            frame->height = height;
+            check(av_frame_get_buffer(frame, 0), "cannot allocate a frame");
+            frame->color_primaries = codec->color_primaries;
+            frame->color_trc = codec->color_trc;
+            frame->colorspace = codec->colorspace;
+            frame->color_range = codec->color_range;
+            frame->sample_aspect_ratio = codec->sample_aspect_ratio;
+        }
 
         // swscale defaults to BT.601; convert full-range RGB to limited-range BT.709 YUV.
         sws = sws_getContext(width, height, AV_PIX_FMT_RGB24, width, height, codec->pix_fmt,
@@ -281,15 +287,23 @@ struct VideoEncoder::State {
         }
     }
 
-    void write_frame(const uint8_t* rgb8) {
-        if (finished) throw std::logic_error("VideoEncoder::write_frame after finish");
-        if (failed)
-            throw RuntimeFailure("cannot write video " + where() + ": the encoder failed earlier");
-        // The encoder (or wrapped_avframe) may still hold a reference to the last buffer.
+    // Touches only the colour converter and staged[slot]: it may run while the other slot
+    // is being sent on another thread.
+    void convert(const uint8_t* rgb8, int slot) {
+        if (finished) throw std::logic_error("VideoEncoder::convert after finish");
+        AVFrame* frame = staged[slot & 1];
+        // The encoder (or wrapped_avframe) may still hold a reference to this slot's last buffer.
         check(av_frame_make_writable(frame), "cannot allocate a frame");
         const uint8_t* src[1] = {rgb8};
         const int stride[1] = {3 * width};
         sws_scale(sws, src, stride, 0, height, frame->data, frame->linesize);
+    }
+
+    void send(int slot) {
+        if (finished) throw std::logic_error("VideoEncoder::send after finish");
+        if (failed)
+            throw RuntimeFailure("cannot write video " + where() + ": the encoder failed earlier");
+        AVFrame* frame = staged[slot & 1];
         frame->pts = frames;
         encode(frame);
         ++frames;
@@ -334,7 +348,14 @@ std::unique_ptr<VideoEncoder> VideoEncoder::open(const VideoSettings& settings) 
     return std::unique_ptr<VideoEncoder>(new VideoEncoder(std::move(state)));
 }
 
-void VideoEncoder::write_frame(const uint8_t* rgb8) { s_->write_frame(rgb8); }
+void VideoEncoder::write_frame(const uint8_t* rgb8) {
+    s_->convert(rgb8, 0);
+    s_->send(0);
+}
+
+void VideoEncoder::convert(const uint8_t* rgb8, int slot) { s_->convert(rgb8, slot); }
+
+void VideoEncoder::send(int slot) { s_->send(slot); }
 
 void VideoEncoder::finish() { s_->finish(); }
 

@@ -38,6 +38,12 @@ public:
     // Throws RuntimeFailure on an encoder or write error (e.g. EPIPE); the output is then
     // abandoned (the temporary file removed) rather than finished.
     void write_frame(const uint8_t* rgb8);
+    // write_frame() in two steps, for a caller that converts the next frame to the codec's
+    // format while the last one is encoded on another thread: convert() fills staging frame
+    // `slot` (0 or 1) from rgb8, send() encodes it. One thread converts, one sends; a slot is
+    // never converted into while it is being sent.
+    void convert(const uint8_t* rgb8, int slot);
+    void send(int slot);
 
     // Flushes the encoder, writes the trailer, closes and renames into place. Idempotent.
     void finish();

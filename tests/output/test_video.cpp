@@ -190,6 +190,30 @@ TEST(VideoEncoder, StdoutOddSizeUses444) {
     EXPECT_EQ(count(y4m, "FRAME"), 3u);
 }
 
+// convert() and send() are write_frame() in two steps, with two staging frames so that the
+// next frame can be converted before the last one is sent: the same frames must come out.
+TEST(VideoEncoder, ConvertingAheadWritesWhatWriteFrameWrites) {
+    sl::test::TempDir dir;
+    const sl::VideoSettings one{.path = dir.file("one.mkv"), .width = 64, .height = 48};
+    encode(one);
+    sl::VideoSettings two = one;
+    two.path = dir.file("two.mkv");
+    {
+        auto enc = sl::VideoEncoder::open(two);
+        for (int k = 0; k < kFrames; ++k) {
+            enc->convert(frame(two.width, two.height, k).data(), k % 2);
+            if (k > 0) enc->send((k - 1) % 2);  // frame k is already converted, in the other slot
+        }
+        enc->send((kFrames - 1) % 2);
+        enc->finish();
+        EXPECT_EQ(enc->frames_written(), kFrames);
+    }
+    const sl::VideoInfo a = sl::read_video(one.path), b = sl::read_video(two.path);
+    ASSERT_EQ(b.frames, kFrames);
+    EXPECT_EQ(a.mean_luma, b.mean_luma);  // FFV1 is lossless: equal frames, equal means
+    for (int k = 1; k < kFrames; ++k) EXPECT_GT(b.mean_luma[size_t(k)], b.mean_luma[size_t(k - 1)]);
+}
+
 TEST(VideoEncoder, ClosedPipeIsRuntimeFailure) {
     int fds[2];
     ASSERT_EQ(::pipe(fds), 0);
