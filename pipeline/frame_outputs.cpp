@@ -132,7 +132,8 @@ void FrameOutputs::write_frame(int index, const std::vector<float>& rgb, bool on
             if (encoder_) {
                 // Converted here, into the staging frame the encoder is not reading, while the
                 // frame before is still being encoded.
-                const int slot = static_cast<int>(frames_written % 2);
+                const int slot = staging_slot_;
+                staging_slot_ ^= 1;
                 const double convert_s = timed([&] { encoder_->convert(rgb8_.data(), slot); });
                 encoding_->wait();  // the frame before (rethrows its failure)
                 seconds_video += convert_s;

@@ -82,6 +82,7 @@ private:
     // The encoder, on a thread of its own: with one thread for the whole chain it set the pace
     // of a run's tail (x264 took 5 of its 7 ms a 512x512 frame). Last: it stops (ending its
     // frame) before what it reads goes. Only with a video.
+    int staging_slot_ = 0;  // the encoder's staging frame the next frame is converted into
     std::optional<BackgroundWorker> encoding_;
 };
 

@@ -14,8 +14,9 @@ extern "C" {
 
 #include "foundation/errors.h"
 #include "stages/output/video_encoder.h"
-#include "tests/common/video_reader.h"
+#include "tests/common/stdout_redirect.h"
 #include "tests/common/temp_dir.h"
+#include "tests/common/video_reader.h"
 
 namespace {
 
@@ -53,24 +54,7 @@ size_t count(const std::string& text, const std::string& word) {
     return n;
 }
 
-// Points file descriptor 1 somewhere else for the lifetime of the object. No gtest assertion
-// may run meanwhile, since gtest prints failures to stdout.
-class StdoutRedirect {
-public:
-    explicit StdoutRedirect(int fd) {
-        std::fflush(stdout);
-        saved_ = ::dup(1);
-        ::dup2(fd, 1);
-    }
-    ~StdoutRedirect() {
-        std::fflush(stdout);
-        ::dup2(saved_, 1);
-        ::close(saved_);
-    }
-
-private:
-    int saved_ = -1;
-};
+using sl::test::StdoutRedirect;
 
 struct Case {
     const char* ext;

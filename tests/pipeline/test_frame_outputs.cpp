@@ -10,6 +10,7 @@
 
 #include "foundation/errors.h"
 #include "pipeline/frame_outputs.h"
+#include "tests/common/stdout_redirect.h"
 #include "tests/common/temp_dir.h"
 #include "tests/common/video_reader.h"
 
@@ -50,24 +51,21 @@ TEST(FrameOutputs, AFailingEncoderEndsTheRunWithItsError) {
     int fds[2];
     ASSERT_EQ(::pipe(fds), 0);
     ::close(fds[0]);  // nobody reads: every write of the y4m stream fails (EPIPE)
-    std::fflush(stdout);
-    const int saved = ::dup(1);
-    ::dup2(fds[1], 1);
     std::string error;
     int frames_before_error = -1;
-    try {
-        sl::FrameOutputs out(settings_for("-"));
-        for (int k = 0; k < kFrames; ++k) {
-            out.write_frame(k, grey(k));
-            frames_before_error = k + 1;
+    {
+        sl::test::StdoutRedirect redirect(fds[1]);  // gtest prints to stdout: nothing is asserted in here
+        try {
+            sl::FrameOutputs out(settings_for("-"));
+            for (int k = 0; k < kFrames; ++k) {
+                out.write_frame(k, grey(k));
+                frames_before_error = k + 1;
+            }
+            out.finish();
+        } catch (const sl::RuntimeFailure& e) {
+            error = e.what();
         }
-        out.finish();
-    } catch (const sl::RuntimeFailure& e) {
-        error = e.what();
     }
-    std::fflush(stdout);
-    ::dup2(saved, 1);  // gtest prints to stdout: nothing is asserted before this
-    ::close(saved);
     ::close(fds[1]);
     EXPECT_NE(error.find("cannot write video"), std::string::npos) << error;
     // The encoder runs one frame behind: its failure on frame k is reported by the next call.
