@@ -11,6 +11,7 @@
 #include <memory>
 #include <optional>
 
+#include "foundation/errors.h"
 #include "pipeline/distributed/image_gather.h"
 #include "pipeline/distributed/section_state_on_ranks.h"
 #include "pipeline/exposure.h"
@@ -274,6 +275,10 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameSink& outputs, const Pro
         else s->run.buffer.reset();
         return s;
     });
+    // A serial node may start its next body before it hands on its last output (oneTBB spawns
+    // the queued input first), so a section that returns at once (resumed, or stopped) could
+    // overtake the one before it: sections are put back in index order before they are split.
+    flow::sequencer_node<SectionPtr> sections_in_order(g, [](const SectionPtr& s) { return static_cast<size_t>(s->layout.index); });
     using Split = flow::multifunction_node<SectionPtr, std::tuple<FrameJob>>;
     Split split(g, flow::serial, [&](const SectionPtr& s, Split::output_ports_type& out) {
         if (!s->complete) return;  // never started: nothing to write
@@ -336,11 +341,21 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameSink& outputs, const Pro
             }
         }
         stats.assembly += since(t0);
+        if (job.frame_assembled) job.frame_assembled(job_in.frame);
         return out;
     });
+    // The same hazard between assembly and the writers: frames are put back in index order (the
+    // exposure rides on the first one, and the video, y4m and cube are streams).
+    flow::sequencer_node<FramePtr> frames_in_order(g, [](const FramePtr& f) { return static_cast<size_t>(f->frame); });
+    int next_frame = 0;
     using Write = flow::multifunction_node<FramePtr, std::tuple<flow::continue_msg, flow::continue_msg>>;
     Write write(g, flow::serial, [&](const FramePtr& frame, Write::output_ports_type& out) {
         const FrameImage& img = *frame;
+        // The sequencer makes this impossible; were it ever broken, no stream gets a frame out of order.
+        if (img.frame != next_frame)
+            throw RuntimeFailure("internal error: frame " + std::to_string(img.frame) + " reached the writers before frame " +
+                        std::to_string(next_frame));
+        ++next_frame;
         auto t0 = Clock::now();
         if (root) {
             if (img.exposure) outputs.set_exposure_plan(*img.exposure);
@@ -370,11 +385,13 @@ PipelineStats run_pipeline(const PipelineJob& job, FrameSink& outputs, const Pro
 
     flow::make_edge(sections, sections_alive);
     flow::make_edge(sections_alive, render);
-    flow::make_edge(render, split);
+    flow::make_edge(render, sections_in_order);
+    flow::make_edge(sections_in_order, split);
     flow::make_edge(std::get<0>(split.output_ports()), frame_queue);
     flow::make_edge(frame_queue, frames_alive);
     flow::make_edge(frames_alive, assemble);
-    flow::make_edge(assemble, write);
+    flow::make_edge(assemble, frames_in_order);
+    flow::make_edge(frames_in_order, write);
     flow::make_edge(flow::output_port<0>(write), frames_alive.decrementer());
     flow::make_edge(flow::output_port<1>(write), sections_alive.decrementer());
     sections.activate();

@@ -3,7 +3,8 @@
 // (the program's FrameOutputs, or images in memory through render_frames.h):
 //
 //   sections -> limiter(1 or 2 alive) -> render section (its own pass graph)
-//            -> split into frames -> queue -> limiter(2 frames) -> assemble -> write
+//            -> in section order -> split into frames -> queue -> limiter(2 frames) -> assemble
+//            -> in frame order -> write
 //                                                 ^ frame done        section done v
 //
 // Frames leave in order. A section's time buckets are freed as soon as its last frame is
@@ -73,6 +74,7 @@ struct PipelineJob {
     std::function<void(int section, int passes_done)> section_started;
     std::function<void(double seconds, int passes)> full_pass_seconds;  // the preview's mean pass
     std::function<void(int passes)> passes_fixed;              // --time-limit decided the passes
+    std::function<void(int frame)> frame_assembled;  // after each frame's assembly (tests delay it)
 };
 
 PipelineStats run_pipeline(const PipelineJob& job, FrameSink& outputs, const ProgressFn& progress,

@@ -105,7 +105,6 @@ TEST(Interrupt, OneSectionDeliversEveryFrameFromThePassesDone) {
     };
     test::Child c = test::spawn(args("a", "100000"), dir + "/err.txt");
     ASSERT_TRUE(test::wait_for(dir + "/a/section_0000.ckpt"));  // at least one pass done
-    std::this_thread::sleep_for(std::chrono::milliseconds(150));
     kill(c.pid, SIGINT);
     ASSERT_EQ(test::wait_exit(c), 130);
     const std::string err = test::read_text(dir + "/err.txt");
@@ -144,19 +143,16 @@ TEST(Interrupt, AbandonsAPassWhilePhotonsAreTraced) {
                                         "--photons", "1000000", "--exr-dir", dir + "/" + sub, "--stats",
                                         dir + "/" + sub + ".json", "--checkpoint-every", "0", "--no-progress"};
     };
-    int abandoned = 0, n = 0;
-    for (int attempt = 0; attempt < 3 && abandoned == 0; ++attempt) {
-        fs::remove_all(dir + "/a");
-        test::Child c = test::spawn(args("a", "1000"), dir + "/err.txt");
-        ASSERT_TRUE(test::wait_for(dir + "/a/section_0000.ckpt"));  // the first pass is done
-        std::this_thread::sleep_for(std::chrono::milliseconds(200));  // the second is under way
-        kill(c.pid, SIGINT);
-        ASSERT_EQ(test::wait_exit(c), 130);
-        nlohmann::json s = test::read_json(dir + "/a.json");
-        n = s["passes_per_section"][0].get<int>();
-        abandoned += s["photons_traced"].get<int64_t>() < int64_t(n + 1) * 1000000;
-    }
-    EXPECT_GE(abandoned, 1) << "the pass in flight was always finished";
+    // The first pass's checkpoint is the event: the second pass's photons (a million, most of
+    // its time) are being traced when the signal lands, on a fast machine or a loaded one.
+    test::Child c = test::spawn(args("a", "1000"), dir + "/err.txt");
+    ASSERT_TRUE(test::wait_for(dir + "/a/section_0000.ckpt"));
+    kill(c.pid, SIGINT);
+    ASSERT_EQ(test::wait_exit(c), 130);
+    nlohmann::json s = test::read_json(dir + "/a.json");
+    const int n = s["passes_per_section"][0].get<int>();
+    const bool abandoned = s["photons_traced"].get<int64_t>() < int64_t(n + 1) * 1000000;
+    EXPECT_TRUE(abandoned) << "the pass in flight was finished";
     ASSERT_GE(n, 1);
     test::RunResult b = test::run(args("b", std::to_string(n)), dir);
     ASSERT_EQ(b.status, 0) << b.err;
