@@ -182,6 +182,9 @@ TEST(ArchitectureIncludes, EveryRoomOfTheTableExists) {
             EXPECT_TRUE(fs::is_directory(test::source_path(f))) << kDoc << ": room " << f << " does not exist";
         for (const std::string& u : r.may_use)
             EXPECT_TRUE(fs::exists(test::source_path(u))) << kDoc << ": " << u << " (may use) does not exist";
+        for (const std::string& l : r.libraries)
+            EXPECT_TRUE(is_library(l)) << kDoc << ": `" << l << "` (may use libraries) is not the start of a known "
+                                       << "library's headers (kLibraries in this test)";
     }
 }
 
