@@ -330,7 +330,8 @@ RunOptions parse_command_line(int argc, const char* const* argv) {
             r.command = RunOptions::Command::Help;
             // `slowlight retime --help`: that command's own help.
             std::string_view first = argc > 1 ? std::string_view(argv[1]) : std::string_view();
-            if (first == "render" || first == "info" || first == "retime") r.help_topic = std::string(first);
+            for (std::string_view topic : help_topics())
+                if (first == topic) r.help_topic = std::string(first);
         }
         else if (arg == "--version")
             r.command = RunOptions::Command::Version;
@@ -411,6 +412,11 @@ RunOptions parse_command_line(int argc, const char* const* argv) {
     if (r.exposure && (r.exposure_percentile || r.exposure_follow))
         fail("--exposure fixes the exposure; it cannot be combined with --exposure-percentile or --exposure-follow");
     return r;
+}
+
+std::span<const std::string_view> help_topics() {
+    static constexpr std::string_view kTopics[] = {"render", "info", "retime"};
+    return kTopics;
 }
 
 std::string usage_text(const std::string& topic) {

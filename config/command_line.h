@@ -6,6 +6,7 @@
 // option overrides an earlier one. Errors throw InputError "command line: <what>".
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 
@@ -21,6 +22,9 @@ void require_an_output(const RunOptions& options);
 // The --help text: every command and option, one line each; with a topic ("render", "info",
 // "retime"), that command's own help with only the options it uses.
 std::string usage_text(const std::string& topic = "");
+
+// The commands with a help of their own (`slowlight render --help`), the topics usage_text takes.
+std::span<const std::string_view> help_topics();
 
 // The commands, one line each: what `slowlight` alone prints after its error line.
 std::string commands_text();

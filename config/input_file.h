@@ -1,8 +1,9 @@
 #pragma once
 // Inputs are read only from regular files, and their size is checked before anything is read:
 // a FIFO would block in open(), a link to /dev/zero or /dev/urandom would read forever, and a
-// huge file would be read into memory before any limit said no. Every input of a run (scene,
-// meshes, cubes, EXR frames) goes through here.
+// huge file would be read into memory before any limit said no. The scene file, the cubes
+// retime reads, the EXR frames --resume reads and core/mesh_loader's OBJ files go through here;
+// the importers in core/import/ make the same checks themselves (tinygltf opens files by name).
 #include <cstdint>
 #include <functional>
 #include <string>

@@ -196,7 +196,7 @@ JsonObject::JsonObject(const Json& value, std::string path, const std::string& s
     if (!value_.is_object()) fail_here("must be a JSON object {...}, got " + describe_json(value_));
 }
 
-void JsonObject::expect_keys(std::initializer_list<std::string_view> allowed) const {
+void JsonObject::expect_keys(std::span<const std::string_view> allowed) const {
     for (const auto& item : value_.items()) {
         if (std::find(allowed.begin(), allowed.end(), item.key()) != allowed.end()) continue;
         std::string list;

@@ -7,6 +7,7 @@
 #include <initializer_list>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <span>
 #include <string>
 #include <string_view>
 
@@ -42,8 +43,8 @@ class JsonObject {
 public:
     JsonObject(const Json& value, std::string path, const std::string& source);
 
-    // Every key present must be one of `allowed`.
-    void expect_keys(std::initializer_list<std::string_view> allowed) const;
+    // Every key present must be one of `allowed` (the parser's lists: config/scene_keys.h).
+    void expect_keys(std::span<const std::string_view> allowed) const;
 
     bool has(std::string_view key) const;
     const Json& at(std::string_view key) const;  // required: fails when missing

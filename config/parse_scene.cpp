@@ -15,6 +15,7 @@
 #include "config/json_reader.h"
 #include "config/limits.h"
 #include "config/pulse_width.h"
+#include "config/scene_keys.h"
 #include "config/text_util.h"
 #include "foundation/errors.h"
 #include "config/sun_desc.h"
@@ -35,8 +36,7 @@ public:
 
     SceneDesc parse(const Json& root) {
         JsonObject top(root, "", source_);
-        top.expect_keys({"units", "camera", "materials", "shapes", "lights", "medium", "time",
-                         "emission", "render"});
+        top.expect_keys(scene_keys_of(""));
         scene_.source = source_;
         // Units first: every length below depends on them. Time before emission: the pulse
         // width is checked against the frame width.
@@ -154,13 +154,13 @@ private:
     // --- sections ---------------------------------------------------------------------------
 
     void parse_units(const JsonObject& u) {
-        u.expect_keys({"meters_per_unit"});
+        u.expect_keys(scene_keys_of("units"));
         scale_ = u.number("meters_per_unit", Range::positive(), 1.0);
         scene_.meters_per_unit = scale_;
     }
 
     void parse_camera(const JsonObject& c) {
-        c.expect_keys({"position", "look_at", "up", "vfov_deg", "width", "height"});
+        c.expect_keys(scene_keys_of("camera"));
         CameraDesc& cam = scene_.camera;
         cam.position = point(c, "position");
         cam.look_at = point(c, "look_at");
@@ -185,16 +185,16 @@ private:
             const Range unit = Range::closed(0, 1);
             switch (d.type) {
                 case MaterialType::Diffuse:
-                    m.expect_keys({"type", "albedo"});
+                    m.expect_keys(scene_keys_of("materials", "diffuse"));
                     if (m.has("albedo")) d.albedo = to_vec3(m, "albedo", m.triple("albedo", unit));
                     break;
                 case MaterialType::Mirror:
-                    m.expect_keys({"type", "reflectance"});
+                    m.expect_keys(scene_keys_of("materials", "mirror"));
                     if (m.has("reflectance"))
                         d.reflectance = to_vec3(m, "reflectance", m.triple("reflectance", unit));
                     break;
                 case MaterialType::Dielectric:
-                    m.expect_keys({"type", "ior"});
+                    m.expect_keys(scene_keys_of("materials", "dielectric"));
                     d.ior = number_f(m, "ior", Range::positive(), d.ior);
                     break;
             }
@@ -238,26 +238,26 @@ private:
         d.type = static_cast<ShapeType>(s.choice("type", {"quad", "box", "sphere", "mesh", "gltf"}));
         switch (d.type) {
             case ShapeType::Quad:
-                s.expect_keys({"type", "corner", "edge1", "edge2", "material"});
+                s.expect_keys(scene_keys_of("shapes", "quad"));
                 d.corner = point(s, "corner");
                 d.edge1 = point(s, "edge1");
                 d.edge2 = point(s, "edge2");
                 check_quad(s, d.edge1, d.edge2);
                 break;
             case ShapeType::Box:
-                s.expect_keys({"type", "min", "max", "material"});
+                s.expect_keys(scene_keys_of("shapes", "box"));
                 d.min = point(s, "min");
                 d.max = point(s, "max");
                 check_box(s, d.min, d.max);
                 break;
             case ShapeType::Sphere:
-                s.expect_keys({"type", "center", "radius", "material"});
+                s.expect_keys(scene_keys_of("shapes", "sphere"));
                 d.center = point(s, "center");
                 d.radius = scalar_length(s, "radius", Range::positive());
                 break;
             case ShapeType::Mesh:
             case ShapeType::Gltf:
-                s.expect_keys({"type", "file", "translate", "scale", "rotate_deg", "material"});
+                s.expect_keys(scene_keys_of("shapes", d.type == ShapeType::Mesh ? "mesh" : "gltf"));
                 d.file = mesh_path(s);
                 if (s.has("translate")) d.translate = point(s, "translate");
                 // The OBJ's coordinates are in the file's units too: the scale carries them.
@@ -278,12 +278,12 @@ private:
         d.type = static_cast<LightType>(l.choice("type", {"point", "quad", "spot", "laser", "sun"}));
         switch (d.type) {
             case LightType::Point:
-                l.expect_keys({"type", "position", "power"});
+                l.expect_keys(scene_keys_of("lights", "point"));
                 d.position = point(l, "position");
                 d.power = color(l, "power");
                 break;
             case LightType::Quad:
-                l.expect_keys({"type", "corner", "edge1", "edge2", "radiance"});
+                l.expect_keys(scene_keys_of("lights", "quad"));
                 d.corner = point(l, "corner");
                 d.edge1 = point(l, "edge1");
                 d.edge2 = point(l, "edge2");
@@ -291,14 +291,14 @@ private:
                 d.radiance = color(l, "radiance");
                 break;
             case LightType::Spot:
-                l.expect_keys({"type", "position", "direction", "cone_deg", "power"});
+                l.expect_keys(scene_keys_of("lights", "spot"));
                 d.position = point(l, "position");
                 d.direction = direction(l, "direction");
                 d.cone_deg = number_f(l, "cone_deg", Range{limits::kMinSpotConeDeg, 180, false, false}, d.cone_deg);
                 d.power = color(l, "power");
                 break;
             case LightType::Laser:
-                l.expect_keys({"type", "position", "direction", "radius", "power"});
+                l.expect_keys(scene_keys_of("lights", "laser"));
                 d.position = point(l, "position");
                 d.direction = direction(l, "direction");
                 if (l.has("radius")) d.radius = scalar_length(l, "radius", Range::positive());
@@ -314,7 +314,7 @@ private:
     // A sun: where its light goes, its angular diameter and either the irradiance on a plane
     // facing it (W/m^2) or the radiance of its disc (W sr^-1 m^-2).
     static void parse_sun(const JsonObject& l, LightDesc& d) {
-        l.expect_keys({"type", "direction", "angle_deg", "irradiance", "radiance"});
+        l.expect_keys(scene_keys_of("lights", "sun"));
         d.direction = direction(l, "direction");
         d.angle_deg = number_f(l, "angle_deg", Range::closed(0, limits::kMaxSunAngleDeg), d.angle_deg);
         const bool e = l.has("irradiance"), r = l.has("radiance");
@@ -347,7 +347,7 @@ private:
     }
 
     void parse_medium(const JsonObject& m) {
-        m.expect_keys({"sigma_a", "sigma_s", "g", "bounds"});
+        m.expect_keys(scene_keys_of("medium"));
         MediumDesc& md = scene_.medium;
         md.present = true;
         md.sigma_a = per_meter(m, "sigma_a");
@@ -355,7 +355,7 @@ private:
         md.g = number_f(m, "g", Range::open(-1, 1), md.g);
         if (m.has("bounds")) {
             JsonObject b = m.object("bounds");
-            b.expect_keys({"min", "max"});
+            b.expect_keys(scene_keys_of("medium.bounds"));
             md.has_bounds = true;
             md.bounds_min = point(b, "min");
             md.bounds_max = point(b, "max");
@@ -364,7 +364,7 @@ private:
     }
 
     void parse_time(const JsonObject& t) {
-        t.expect_keys({"start_ns", "end_ns", "frames", "fps"});
+        t.expect_keys(scene_keys_of("time"));
         TimeDesc& td = scene_.time;
         td.start_ns = t.number("start_ns", Range::any(), td.start_ns);
         td.end_ns = t.number("end_ns", Range::any(), td.end_ns);
@@ -378,7 +378,7 @@ private:
     }
 
     void parse_emission(const JsonObject& e) {
-        e.expect_keys({"mode", "width_ns"});
+        e.expect_keys(scene_keys_of("emission"));
         EmissionDesc& ed = scene_.emission;
         ed.mode = static_cast<EmissionMode>(e.choice("mode", {"constant", "pulse"}, 0));
         if (e.has("width_ns")) {
@@ -390,8 +390,7 @@ private:
     }
 
     void parse_render(const JsonObject& r) {
-        r.expect_keys({"passes", "photons_per_pass", "max_depth", "radius", "alpha", "camera_tof",
-                       "seed", "ambient"});
+        r.expect_keys(scene_keys_of("render"));
         RenderDesc& rd = scene_.render;
         rd.passes = static_cast<int>(r.integer("passes", 1, limits::kMaxPasses, rd.passes));
         rd.photons_per_pass =
