@@ -46,7 +46,7 @@ struct Codec {
     uint64_t per_pixel;     // its own pictures: look-ahead, references, slice contexts
     bool full_chroma;       // 4:4:4 (else 4:2:0) in our two staged frames
 };
-constexpr Codec kX264{"x264", 7 * kMiB, 20, false};  // 5-frame look-ahead, 3 B-frames, 1 thread
+constexpr Codec kX264{"x264", 7 * kMiB, 22, false};  // 5-frame look-ahead, 3 B-frames, 1 thread (20 fitted; 22: at 512² K = 8 the fit left no room)
 constexpr Codec kFfv1{"FFV1", 4 * kMiB, 153, true};  // per-slice sample buffers, 4:4:4
 constexpr Codec kVp9{"VP9", 23 * kMiB, 115, false};  // libvpx's lag of 25 frames, row-mt
 constexpr Codec kY4m{"y4m", 0, 0, false};            // frames pass through as they are
