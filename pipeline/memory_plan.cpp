@@ -3,28 +3,81 @@
 #include "core/import/resolve_imports.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <unistd.h>
+#include <filesystem>
 
 #include "foundation/errors.h"
 #include "stages/render/photon_map.h"
+#include "stages/render/render_context.h"
 #include "stages/render/section_buffer.h"
 #include "stages/render/section_layout.h"
+#include "stages/render/volume_photon_map.h"
 
 namespace sl {
 
-static uint64_t current_rss_bytes() {
-    std::ifstream statm("/proc/self/statm");
-    uint64_t size = 0, resident = 0;
-    statm >> size >> resident;
-    return resident * static_cast<uint64_t>(sysconf(_SC_PAGESIZE));
-}
+namespace {
 
-static size_t pixel_count(const SceneDesc& s) {
+constexpr uint64_t kMiB = 1ull << 20;
+
+// The program itself: code, libraries (FFmpeg's alone map ~200 of them), TBB's and Embree's
+// start-up, the scene's parse. Measured once as the peak RSS (--stats peak_rss_bytes) of a render
+// that holds next to nothing else, 33.2-33.3 MiB in four runs on the development machine
+// (Debian 12, FFmpeg 5.1, Release build, 2026-12-03):
+//   slowlight render samples/cornell_box.json --frames 2 --width 16 --height 16 --passes 1
+//       --photons 100 --no-progress --exr-dir DIR --stats S.json
+// A constant on purpose: what the process happens to have mapped when it plans must not move K.
+constexpr uint64_t kProgramBytes = 34 * kMiB;
+
+size_t pixel_count(const SceneDesc& s) {
     return static_cast<size_t>(s.camera.width) * static_cast<size_t>(s.camera.height);
 }
+
+// The video encoder the output's container selects (the table in stages/output/video_encoder.cpp)
+// and what it costs beyond our own frames. The codec's state is the library's, not a type of
+// ours, so it is measured: the peak RSS of renders at 8 frames of 256², 512² and 768² (1000
+// photons, 2 passes) into each container, less the same render with --exr-dir only and less the
+// staged frames below; a straight line through the three sizes (slope: bytes per pixel,
+// intercept: the library's state at open). 2026-12-03, same machine as kProgramBytes.
+struct Codec {
+    const char* name;
+    uint64_t fixed;         // the codec's state at open (and its pages of code first touched)
+    uint64_t per_pixel;     // its own pictures: look-ahead, references, slice contexts
+    bool full_chroma;       // 4:4:4 (else 4:2:0) in our two staged frames
+};
+constexpr Codec kX264{"x264", 7 * kMiB, 22, false};  // 5-frame look-ahead, 3 B-frames, 1 thread (20 fitted; 22: at 512² K = 8 the fit left no room)
+constexpr Codec kFfv1{"FFV1", 4 * kMiB, 153, true};  // per-slice sample buffers, 4:4:4
+constexpr Codec kVp9{"VP9", 23 * kMiB, 115, false};  // libvpx's lag of 25 frames, row-mt
+constexpr Codec kY4m{"y4m", 0, 0, false};            // frames pass through as they are
+
+const Codec* codec_for(const std::string& output) {
+    if (output.empty()) return nullptr;
+    if (output == "-") return &kY4m;
+    std::string ext = std::filesystem::path(output).extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (ext == ".mp4" || ext == ".mov") return &kX264;
+    if (ext == ".webm") return &kVp9;
+    return &kFfv1;  // .mkv, and a device or FIFO without an extension (Matroska)
+}
+
+// Stored surface records and medium events per photon path: one pilot pass of the scene's own
+// lights, full paths, a fixed seed and pass number, so the same scene always gives the same
+// count (batches have their own random streams: the thread count does not matter either).
+constexpr int64_t kPilotPhotons = 4 * PhotonMap::kBatch;
+
+std::pair<double, double> pilot_yield(const SceneDesc& scene) {
+    if (scene.render.photons_per_pass <= 0) return {0, 0};
+    RenderContext ctx(scene);
+    PhotonMap map;
+    PhotonTraceCounters counters;
+    const SectionLayout full;  // every path to its end
+    map.trace(ctx, full, /*pass=*/0, kPilotPhotons, counters, ctx.medium.has_value());
+    return {static_cast<double>(counters.stored.load()) / kPilotPhotons,
+            static_cast<double>(counters.stored_volume.load()) / kPilotPhotons};
+}
+
+}  // namespace
 
 uint64_t section_buffer_bytes(const SceneDesc& scene, int sections, int ranks) {
     const Timeline tl = timeline_of(scene);
@@ -33,43 +86,58 @@ uint64_t section_buffer_bytes(const SceneDesc& scene, int sections, int ranks) {
     return SectionBuffer::bytes_needed(pixels, slots, !is_black(scene.render.ambient));
 }
 
-uint64_t fixed_overhead_bytes(const SceneDesc& scene) {
-    uint64_t pixels = pixel_count(scene);
-    // Photon map: a closed white room stores about albedo/(1-albedo) ~ 2.5 records per path;
-    // budget 4 (or max_depth - 1) records, each in a batch and sorted, with its staged slot
-    // (and, per thread, a copy of the 64th of them being sorted; budgeted as 4 bytes a record),
-    // plus a hash table of twice the records.
-    uint64_t per_path = static_cast<uint64_t>(std::clamp(scene.render.max_depth - 1, 1, 4));
-    uint64_t records = static_cast<uint64_t>(scene.render.photons_per_pass) * per_path;
-    uint64_t photons = records * (2 * sizeof(PhotonRecord) + 2 * 4) + 4 * records * 2 * 4;
-    // Frames on their way out: a running sum (double), three float frames, an 8-bit frame, a
-    // second frame in the codec's format (one is converted while the other is encoded), and
-    // the encoder's own look-ahead (x264 keeps some tens of frames in 4:2:0); and the float
-    // frame a section carries over to the next (constant light).
-    uint64_t frames = pixels * (3 * 8 + 4 * 3 * 4 + 2 * 3);
-    // A medium (with some extinction): volume photons, budgeted like surface records (up to 4
-    // events a path), each in its batch, concatenated, in leaf order (position + payload), with
-    // its BVH index and a node per 4.
-    uint64_t volume = 0;
-    const MediumDesc& m = scene.medium;
-    if (m.present && max_component(m.sigma_a + m.sigma_s) > 0) {
-        uint64_t events = static_cast<uint64_t>(scene.render.photons_per_pass) *
-                          static_cast<uint64_t>(std::clamp(scene.render.max_depth, 1, 4));
-        volume = events * (2 * sizeof(VolumePhoton) + 4 + 3 * 4 + 40 + 32 / 4);
+std::vector<std::pair<const char*, uint64_t>> MemoryBaseline::terms() const {
+    return {{"program and libraries", program}, {"scene (meshes, BVH, textures)", scene},
+            {"photon map (one pass)", photon_map}, {"volume photons (one pass)", volume_photons},
+            {"frames on their way out", frames},  {"video encoder", encoder}};
+}
+
+MemoryBaseline memory_baseline(const SceneDesc& scene, const RunOptions& options) {
+    MemoryBaseline b;
+    const uint64_t pixels = pixel_count(scene);
+    b.program = kProgramBytes;
+    // Imported meshes and textures: their arrays, and Embree's copy and BVH (a fixed figure per
+    // triangle, core/import/resolve_imports.cpp). The built-in shapes are a few hundred bytes.
+    b.scene = imported_mesh_bytes(scene) + imported_bvh_bytes(scene) + texture_bytes(scene);
+
+    // One pass's photons: the pilot's records per path, 2% more for the pilot's own spread
+    // (about 1% for 4096 paths), times this run's photons per pass.
+    const auto [records_per_path, events_per_path] = pilot_yield(scene);
+    b.records_per_path = records_per_path;
+    b.volume_events_per_path = events_per_path;
+    const double photons = static_cast<double>(std::max<int64_t>(scene.render.photons_per_pass, 0));
+    const auto count = [&](double per_path) { return static_cast<uint64_t>(std::ceil(photons * per_path * 1.02)); };
+    b.photon_map = PhotonMap::bytes_needed(count(records_per_path));
+    if (events_per_path > 0) b.volume_photons = VolumePhotonMap::bytes_needed(count(events_per_path));
+
+    // Frames on their way out, per pixel: the running sum of constant light (FrameAssembler,
+    // doubles), the float frames alive at once (the two the pipeline's frames_alive limiter lets
+    // through, and the slot sum being assembled), the frame a section carries to the next
+    // (constant light), and the 8-bit frame the tone mapping writes for a video or PNGs.
+    using Channel = float;
+    const uint64_t rgb_float = 3 * sizeof(Channel);
+    uint64_t per_pixel = 3 * sizeof(double) + 3 * rgb_float + rgb_float;
+    const bool eight_bit = !options.output.empty() || !options.png_dir.empty();
+    if (eight_bit) per_pixel += 3 * sizeof(uint8_t);
+    b.frames = pixels * per_pixel;
+
+    // The encoder: the codec's own state and pictures, and our two staged frames in its pixel
+    // format (one converted while the other is encoded).
+    if (const Codec* c = codec_for(options.output)) {
+        const uint64_t staged = 2 * (c->full_chroma ? 3 * sizeof(uint8_t) * pixels : 3 * sizeof(uint8_t) * pixels / 2);
+        b.encoder = c->fixed + c->per_pixel * pixels + staged;
     }
-    // The encoder, whichever the container asks for: measured at 512x512 with four sections
-    // against EXR-only output, x264 ~100 bytes per pixel, VP9 ~170, FFV1 ~190 (frames on their
-    // way out included); 260 covers them all. And the process as it stands (libraries, the
-    // scene's BVH): measured, not guessed.
-    uint64_t encoder = pixels * 260;
-    // Imported meshes and textures: their arrays, and Embree's copy and BVH.
-    encoder += imported_mesh_bytes(scene) + imported_bvh_bytes(scene) + texture_bytes(scene);
-    return photons + frames + volume + encoder + current_rss_bytes() + (16ull << 20);
+    return b;
 }
 
 MemoryPlan plan_memory(const SceneDesc& scene, const RunOptions& options) {
+    return plan_memory(scene, options, memory_baseline(scene, options));
+}
+
+MemoryPlan plan_memory(const SceneDesc& scene, const RunOptions& options, const MemoryBaseline& fixed) {
     MemoryPlan plan;
-    plan.fixed_overhead_bytes = fixed_overhead_bytes(scene);
+    plan.fixed = fixed;
+    plan.fixed_overhead_bytes = fixed.total();
     const int frames = scene.time.frames;
     const int ranks = std::max(1, options.ranks);
     if (options.strategy == Strategy::FrameByFrame) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <string_view>
 
 #include "foundation/errors.h"
 #include "core/import/resolve_imports.h"
@@ -56,10 +57,24 @@ void print_scene_info(std::ostream& out, std::ostream& err, const SceneDesc& s, 
 
     // Memory: the time buckets (what K divides) and the fixed part (what it does not); a
     // process needs about the sum. --max-memory bounds the sum, --max-bucket-memory the buckets.
-    const uint64_t fixed_part = fixed_overhead_bytes(s);
+    // info takes no -o: its figures are a render's with a video of the usual kind (.mp4, x264);
+    // EXR or PNG frames alone need the encoder's line less, .mkv (FFV1) and .webm (VP9) more.
+    RunOptions with_video = options;
+    if (with_video.output.empty()) with_video.output = "out.mp4";
+    const MemoryBaseline baseline = memory_baseline(s, with_video);
+    const uint64_t fixed_part = baseline.total();
     out << "memory:     fixed overhead about " << format_bytes(fixed_part)
-        << " (libraries, scene, photon map, encoder), plus the time buckets of the sections in flight;\n"
+        << " (the parts below), plus the time buckets of the sections in flight;\n"
         << "            --max-memory bounds the sum (the whole process), --max-bucket-memory the buckets alone\n";
+    for (const auto& [name, bytes] : baseline.terms()) {
+        std::string left = "  " + std::string(name);
+        left.resize(std::max<size_t>(left.size() + 1, 34), ' ');
+        out << left << format_bytes(bytes);
+        if (std::string_view(name).starts_with("photon map"))
+            out << " (" << fixed(baseline.records_per_path, 2) << " records a photon path, from a pilot of the scene)";
+        if (std::string_view(name) == "video encoder") out << " (x264, as for -o out.mp4)";
+        out << "\n";
+    }
     if (ranks > 1) out << "ranks:      " << ranks << " (MPI): each holds the buckets of 1/" << ranks << " of the pixels\n";
     out << "  sections K   buckets per section" << (ranks > 1 ? " per rank" : "         ") << " whole process" << (ranks > 1 ? " per rank" : "") << "\n";
     for (int k : {1, 2, 4, 8}) {
@@ -72,7 +87,7 @@ void print_scene_info(std::ostream& out, std::ostream& err, const SceneDesc& s, 
     }
     if (options.max_memory_bytes || options.max_bucket_bytes) {
         try {
-            MemoryPlan plan = plan_memory(s, options);
+            MemoryPlan plan = plan_memory(s, with_video, baseline);
             out << "  with " << (options.max_memory_bytes ? "--max-memory " + format_bytes(*options.max_memory_bytes)
                                                           : "--max-bucket-memory " + format_bytes(*options.max_bucket_bytes))
                 << ": K = " << plan.sections << " (" << format_bytes(plan.buffer_bytes_per_section)
@@ -91,7 +106,7 @@ void print_scene_info(std::ostream& out, std::ostream& err, const SceneDesc& s, 
         std::string label = mib >= 1024 ? std::to_string(mib / 1024) + "G" : std::to_string(mib) + "M";
         out << "  " << label << std::string(15 - label.size(), ' ');
         try {
-            out << plan_memory(s, o).sections << "\n";
+            out << plan_memory(s, o, baseline).sections << "\n";
         } catch (const InputError&) {
             out << "does not fit (needs at least " << format_bytes(fixed_part + section_buffer_bytes(s, s.time.frames, ranks))
                 << ")\n";

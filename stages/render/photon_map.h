@@ -57,6 +57,15 @@ public:
     // This pass's surface records (grid order), e.g. for flux bookkeeping in tests.
     std::span<const PhotonRecord> records() const { return {grid_, grid_size_}; }
     uint64_t bytes() const;
+    // Resident bytes of one pass's map of `records` surface records, computed before anything is
+    // allocated (pipeline/memory_plan.cpp): each record in its batch and again in the grid, its
+    // hash, and the cell table (a power of two of at least twice the records, plus one entry).
+    static uint64_t bytes_needed(uint64_t records) {
+        uint64_t table = 1u << 10;
+        while (table < 2 * records && table < (1u << 30)) table <<= 1;
+        return records * (2 * sizeof(PhotonRecord) + sizeof(decltype(Batch::hash)::value_type)) +
+               (table + 1) * sizeof(decltype(cell_start_)::value_type);
+    }
 
     // Calls f(const PhotonRecord&) for every photon within sqrt(r2) of p.
     template <class F>

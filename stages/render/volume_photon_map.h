@@ -35,6 +35,14 @@ public:
 
     size_t size() const { return px_.size(); }
     uint64_t bytes() const;
+    // Bytes of one pass's volume photons (`events` of them): each in its batch and concatenated,
+    // its index, its position (SoA) and payload in leaf order, and the tree's nodes (about two
+    // per kLeaf photons), computed before anything is allocated (pipeline/memory_plan.cpp).
+    static uint64_t bytes_needed(uint64_t events) {
+        return events * (2 * sizeof(VolumePhoton) + sizeof(uint32_t) + 3 * sizeof(float) +
+                         sizeof(VolumePhotonPayload)) +
+               (2 * events / kLeaf + 1) * sizeof(Node);
+    }
     const VolumePhotonPayload& payload(uint32_t i) const { return payload_[i]; }
 
     // Calls f(photon index, s) for every photon whose projection s onto o + s d lies in
