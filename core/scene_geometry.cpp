@@ -5,7 +5,7 @@
 #include <limits>
 
 #include "foundation/errors.h"
-#include "core/mesh_loader.h"
+#include "core/shape_triangles.h"
 
 namespace sl {
 namespace {
@@ -43,7 +43,7 @@ void SceneGeometry::build(const SceneDesc& desc) {
         } else if (s.mesh) {  // imported (core/import/resolve_imports.h): already in scene space
             add_triangles(s.mesh->positions, s.mesh->indices, -1, -1, s.mesh);
         } else {
-            TriangleSoup soup = triangulate_shape(s, desc.source);
+            TriangleSoup soup = triangulate_shape(s);
             add_triangles(soup.vertices, soup.indices, s.material, -1);
         }
     }

@@ -1,13 +1,10 @@
 #include "core/texture_load.h"
 
-#include <dlfcn.h>
-#include <unistd.h>
-
-#include <climits>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 
+#include "core/plugin.h"
 #include "foundation/errors.h"
 
 namespace sl {
@@ -15,26 +12,11 @@ namespace {
 
 using ReadFn = int (*)(const char*, const unsigned char*, size_t, int*, int*, float**, int*, char*, size_t);
 
-// libslowlight_image.so beside the executable (or on the library path), loaded on first use.
+// The OpenImageIO texture plugin, loaded on first use.
 ReadFn image_reader(std::string& why) {
-    static std::string load_error;
-    static ReadFn fn = [] {
-        char exe[PATH_MAX];
-        ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
-        std::string beside = n > 0 ? (std::filesystem::path(std::string(exe, static_cast<size_t>(n))).parent_path() /
-                                      "libslowlight_image.so").string()
-                                   : std::string();
-        void* lib = beside.empty() ? nullptr : dlopen(beside.c_str(), RTLD_NOW | RTLD_LOCAL);
-        if (!lib) lib = dlopen("libslowlight_image.so", RTLD_NOW | RTLD_LOCAL);
-        if (!lib) {
-            const char* e = dlerror();
-            load_error = "cannot load the texture reader libslowlight_image.so: " + std::string(e ? e : "not found");
-            return ReadFn{nullptr};
-        }
-        return reinterpret_cast<ReadFn>(dlsym(lib, "slowlight_image_read"));
-    }();
-    if (!fn) why = load_error.empty() ? "the texture reader has no slowlight_image_read" : load_error;
-    return fn;
+    static const Plugin plugin = load_plugin("libslowlight_image.so", "the texture reader", {"slowlight_image_read"});
+    why = plugin.error;
+    return plugin.function<ReadFn>(0);
 }
 
 float srgb_to_linear(float c) {

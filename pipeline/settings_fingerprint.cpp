@@ -10,19 +10,12 @@
 
 #include "config/input_file.h"
 #include "config/scene_fields.h"
+#include "foundation/xxh64.h"
 
 namespace sl {
 namespace {
 
 constexpr uint64_t kMaxMeshBytes = uint64_t(1) << 30;  // as the mesh loader allows
-
-struct Fnv1a {
-    uint64_t h = 1469598103934665603ull;
-    void bytes(const void* data, size_t n) {
-        auto* p = static_cast<const unsigned char*>(data);
-        for (size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 1099511628211ull;
-    }
-};
 
 // Fields that do not decide a pixel, as paths from the scene ("[]": any element of a list):
 // names; file paths and decoded data, whose files' bytes are hashed instead; whether imports
@@ -85,20 +78,20 @@ std::string canonical_settings(const SceneDesc& s, int sections, Strategy strate
 std::string settings_fingerprint(const SceneDesc& s, int sections, Strategy strategy) {
     // The bytes of every file the scene reads: the scene, meshes (also when not yet imported),
     // libraries, buffers, textures.
-    Fnv1a files;
+    Xxh64 files;
     if (!s.imports_resolved)
         for (const ShapeDesc& sh : s.shapes)
             if (sh.type == ShapeType::Mesh)  // never blindly: a FIFO or /dev/zero must not hang the run
                 read_input_chunks(sh.file, kMaxMeshBytes, s.source + ": mesh '" + sh.file + "'", "mesh file",
-                                  [&](const char* p, size_t n) { files.bytes(p, n); });
+                                  [&](const char* p, size_t n) { files.update(p, n); });
     for (const std::string& file : s.input_files)
         read_input_chunks(file, uint64_t(4) << 30, s.source + ": '" + file + "'", "input file",
-                          [&](const char* p, size_t n) { files.bytes(p, n); });
-    const std::string text = canonical_settings(s, sections, strategy) + " files " + std::to_string(files.h);
-    Fnv1a h;
-    h.bytes(text.data(), text.size());
+                          [&](const char* p, size_t n) { files.update(p, n); });
+    const std::string text = canonical_settings(s, sections, strategy) + " files " + std::to_string(files.value());
+    Xxh64 h;
+    h.update(text.data(), text.size());
     char hex[17];
-    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h.h));
+    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h.value()));
     return hex;
 }
 

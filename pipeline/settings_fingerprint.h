@@ -10,7 +10,7 @@
 
 namespace sl {
 
-// 16 hex digits: a hash of canonical_settings and the bytes of every input file.
+// 16 hex digits: XXH64 of canonical_settings and the bytes of every input file.
 std::string settings_fingerprint(const SceneDesc& scene, int sections, Strategy strategy);
 
 // The settings as canonical JSON: every field of the scene's structs (config/scene_fields.h)

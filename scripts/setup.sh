@@ -10,7 +10,7 @@ packages=(
   build-essential cmake ninja-build pkg-config git
   libembree-dev libtbb-dev libopenimageio-dev openimageio-tools libopenexr-dev
   libavformat-dev libavcodec-dev libavfilter-dev libswscale-dev libavutil-dev ffmpeg fonts-dejavu-core
-  nlohmann-json3-dev libtinyobjloader-dev libtinygltf-dev libgtest-dev libbenchmark-dev
+  libxxhash-dev xxhash nlohmann-json3-dev libtinygltf-dev libgtest-dev libbenchmark-dev
   gnuplot-nox libopenmpi-dev openmpi-bin
 )
 missing=()

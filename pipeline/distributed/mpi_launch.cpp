@@ -1,11 +1,8 @@
 #include "pipeline/distributed/mpi_launch.h"
 
-#include <dlfcn.h>
-#include <unistd.h>
-
-#include <climits>
 #include <cstdlib>
-#include <filesystem>
+
+#include "core/plugin.h"
 
 namespace sl {
 namespace {
@@ -21,30 +18,15 @@ DistributedStart start_distributed(int& argc, char**& argv) {
     s.report_error = launcher_process_index() == 0;
     s.error = srun_without_mpi_plugin();
     if (!s.error.empty()) return s;
-    // Beside the executable, or on the library path. RTLD_GLOBAL: MPI's own components,
-    // loaded by MPI_Init, look for the MPI library's symbols in the global scope.
-    char exe[PATH_MAX];
-    ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
-    void* lib = nullptr;
-    if (n > 0) {
-        auto beside = std::filesystem::path(std::string(exe, static_cast<size_t>(n))).parent_path() / "libslowlight_mpi.so";
-        if (std::filesystem::exists(beside)) {
-            lib = dlopen(beside.c_str(), RTLD_NOW | RTLD_GLOBAL);
-        } else {
-            lib = dlopen("libslowlight_mpi.so", RTLD_NOW | RTLD_GLOBAL);
-        }
-    }
-    if (!lib) {
-        const char* e = dlerror();
-        s.error = "started by an MPI launcher, but the MPI plugin libslowlight_mpi.so cannot be loaded: " +
-                  std::string(e ? e : "not found");
+    // RTLD_GLOBAL: MPI's own components, loaded by MPI_Init, look for the MPI library's
+    // symbols in the global scope.
+    const Plugin plugin = load_plugin("libslowlight_mpi.so", "the MPI plugin", {"slowlight_mpi_start"},
+                                      PluginScope::Global);
+    if (!plugin.error.empty()) {
+        s.error = "started by an MPI launcher, but " + plugin.error;
         return s;
     }
-    auto start = reinterpret_cast<StartFn>(dlsym(lib, "slowlight_mpi_start"));
-    if (!start) {
-        s.error = "the MPI plugin libslowlight_mpi.so has no slowlight_mpi_start";
-        return s;
-    }
+    auto start = plugin.function<StartFn>(0);
     char why[256] = {};
     int concurrent = 0;
     s.exchange.reset(start(&argc, &argv, &concurrent, why, sizeof why));

@@ -6,7 +6,7 @@
 #include <limits>
 
 #include "config/input_file.h"
-#include "foundation/checksum64.h"
+#include "foundation/xxh64.h"
 #include "foundation/errors.h"
 #include "stages/output/exr_header_scan.h"
 #include "stages/output/exr_io.h"
@@ -24,17 +24,9 @@ std::string hex16(uint64_t h) {
 }  // namespace
 
 std::string pixel_checksum(const float* values, size_t count) {
-    Checksum64 sum;
+    Xxh64 sum;
     sum.update(values, count * sizeof(float));
     return hex16(sum.value());
-}
-
-std::string pixel_checksum_bytewise(const float* values, size_t count) {
-    // (the seed this program always used; FNV's published offset basis has one digit more)
-    uint64_t h = 1469598103934665603ull;
-    auto* p = reinterpret_cast<const unsigned char*>(values);
-    for (size_t i = 0; i < count * sizeof(float); ++i) h = (h ^ p[i]) * 1099511628211ull;
-    return hex16(h);
 }
 
 std::vector<float> read_verified_exr(const std::string& path, const ExrExpectation& e) {
@@ -48,6 +40,14 @@ std::vector<float> read_verified_exr(const std::string& path, const ExrExpectati
         throw RuntimeFailure(err.what());
     }
     const ExrHeaderInfo h = scan_exr_header(path, "--resume: " + path);  // without OpenEXR: nothing sized from the file yet
+
+    // Before the fingerprint: an older build's frame would otherwise be called another render's.
+    if (!h.metadata.count(kChecksumKey))
+        for (const char* older : kOlderChecksumKeys)
+            if (h.metadata.count(older))
+                throw InputError("--resume: " + path + ": written by an older slowlight (its pixels' checksum is " +
+                                 older + ", this one verifies " + kChecksumKey +
+                                 "); use another --exr-dir or remove its frames");
 
     auto fp = h.metadata.find(e.fingerprint_key);
     if (fp == h.metadata.end() || fp->second != e.fingerprint)
@@ -68,8 +68,6 @@ std::vector<float> read_verified_exr(const std::string& path, const ExrExpectati
     if (index_text != want_index)
         throw bad("carries frame index " + index_text + ", not " + want_index + " (a frame copied onto another's name?)");
     auto sum = h.metadata.find(kChecksumKey);
-    const bool bytewise = sum == h.metadata.end();  // written before the four-lane checksum
-    if (bytewise) sum = h.metadata.find(kByteChecksumKey);
     if (sum == h.metadata.end()) throw bad("has no pixel checksum");
 
     ExrImage img = read_exr(path, {e.width, e.height});
@@ -79,9 +77,7 @@ std::vector<float> read_verified_exr(const std::string& path, const ExrExpectati
         if (!(img.rgb[i] >= 0 && img.rgb[i] <= std::numeric_limits<float>::max()))
             throw bad("pixel (" + std::to_string(i / 3 % e.width) + ", " + std::to_string(i / 3 / e.width) +
                       ") holds " + std::to_string(img.rgb[i]) + ", not a finite radiance >= 0");
-    const std::string actual = bytewise ? pixel_checksum_bytewise(img.rgb.data(), img.rgb.size())
-                                        : pixel_checksum(img.rgb.data(), img.rgb.size());
-    if (actual != sum->second)
+    if (pixel_checksum(img.rgb.data(), img.rgb.size()) != sum->second)
         throw bad("its pixels do not match the checksum written with them (edited or damaged)");
     return std::move(img.rgb);
 }

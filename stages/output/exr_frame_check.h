@@ -13,15 +13,13 @@ namespace sl {
 
 // Header keys written with every frame.
 inline constexpr const char* kFrameIndexKey = "slowlight:frame";
-inline constexpr const char* kChecksumKey = "slowlight:pixels_checksum64";
-// The checksum frames carried before (FNV-1a, one byte at a time: ~1 ms a 256x256 frame on the
-// EXR writer's thread); such frames are still verified with it on --resume.
-inline constexpr const char* kByteChecksumKey = "slowlight:pixels_fnv1a64";
+inline constexpr const char* kChecksumKey = "slowlight:pixels_xxh64";
+// The keys of the checksums older builds wrote (a hand-written four-lane hash, and byte-wise
+// FNV-1a before it): such frames are refused on --resume as an older slowlight's.
+inline constexpr const char* kOlderChecksumKeys[] = {"slowlight:pixels_checksum64", "slowlight:pixels_fnv1a64"};
 
-// foundation/checksum64.h's checksum of the float values' bytes, as 16 hex digits.
+// XXH64 (seed 0) of the float values' bytes (RGB interleaved, little-endian), as 16 hex digits.
 std::string pixel_checksum(const float* values, size_t count);
-// The older byte-wise FNV-1a (64 bit) of the bytes, as 16 hex digits: what kByteChecksumKey holds.
-std::string pixel_checksum_bytewise(const float* values, size_t count);
 
 struct ExrExpectation {
     int width = 0, height = 0;
@@ -31,7 +29,7 @@ struct ExrExpectation {
 
 // The file's RGB pixels (width*height*3 floats, finite and >= 0) if it is exactly what was
 // expected. Throws InputError when the fingerprint differs (a frame of another render: never
-// mixed in, never silently replaced), RuntimeFailure naming the file and what is wrong
+// mixed in, never silently replaced) or an older slowlight wrote it, RuntimeFailure naming the file and what is wrong
 // otherwise (the caller renders the frame again).
 std::vector<float> read_verified_exr(const std::string& path, const ExrExpectation& expect);
 

@@ -20,6 +20,7 @@
 #include "stages/output/atomic_file.h"
 #include "stages/output/exr_file_stream.h"
 #include "stages/output/exr_header_scan.h"
+#include "stages/output/exr_limits.h"
 
 namespace sl {
 
@@ -48,6 +49,7 @@ void write_exr(const std::string& path, int w, int h, const float* rgb,
                const std::map<std::string, std::string>& metadata, bool half) {
     if (w <= 0 || h <= 0)
         throw RuntimeFailure("cannot write EXR '" + path + "': empty image");
+    limit_openexr_sizes();
     const std::string temp = temp_sibling(path);
     try {
         Imf::Header header(w, h);
@@ -85,6 +87,7 @@ void write_exr(const std::string& path, int w, int h, const float* rgb,
 
 ExrImage read_exr(const std::string& path, ExrSize want) {
     require_exr_size(path, scan_exr_header(path), want);
+    limit_openexr_sizes();  // OpenEXR's own size guard as well: exr_limits.h says why both
     try {
         Imf::InputFile in(path.c_str());
         const Imf::Header& header = in.header();

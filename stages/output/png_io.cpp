@@ -1,11 +1,6 @@
 #include "stages/output/png_io.h"
 
-#include <dlfcn.h>
-#include <unistd.h>
-
-#include <climits>
-#include <filesystem>
-
+#include "core/plugin.h"
 #include "foundation/errors.h"
 #include "stages/output/atomic_file.h"
 
@@ -14,27 +9,11 @@ namespace {
 
 using PngWriteFn = int (*)(const char*, int, int, const unsigned char*, char*, size_t);
 
-// The OpenImageIO PNG plugin, libslowlight_png.so, beside the executable (or on the library
-// path), loaded on first use.
+// The OpenImageIO PNG plugin, loaded on first use.
 PngWriteFn png_writer(std::string& why) {
-    static std::string load_error;
-    static PngWriteFn fn = [] {
-        char exe[PATH_MAX];
-        ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
-        std::string beside = n > 0 ? (std::filesystem::path(std::string(exe, static_cast<size_t>(n))).parent_path() /
-                                      "libslowlight_png.so").string()
-                                   : std::string();
-        void* lib = beside.empty() ? nullptr : dlopen(beside.c_str(), RTLD_NOW | RTLD_LOCAL);
-        if (!lib) lib = dlopen("libslowlight_png.so", RTLD_NOW | RTLD_LOCAL);
-        if (!lib) {
-            const char* e = dlerror();
-            load_error = "cannot load the PNG writer libslowlight_png.so: " + std::string(e ? e : "not found");
-            return PngWriteFn{nullptr};
-        }
-        return reinterpret_cast<PngWriteFn>(dlsym(lib, "slowlight_png_write"));
-    }();
-    if (!fn) why = load_error.empty() ? "the PNG writer has no slowlight_png_write" : load_error;
-    return fn;
+    static const Plugin plugin = load_plugin("libslowlight_png.so", "the PNG writer", {"slowlight_png_write"});
+    why = plugin.error;
+    return plugin.function<PngWriteFn>(0);
 }
 
 }  // namespace

@@ -1,14 +1,10 @@
 #include "stages/output/time_label.h"
 
-#include <dlfcn.h>
-#include <unistd.h>
-
 #include <algorithm>
-#include <climits>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 
+#include "core/plugin.h"
 #include "foundation/errors.h"
 
 namespace sl {
@@ -28,39 +24,14 @@ struct TimeLabel::Graph {
     }
 };
 
-namespace {
-
-void* plugin(std::string& why) {
-    static std::string load_error;
-    static void* lib = [] {
-        char exe[PATH_MAX];
-        ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
-        std::string beside = n > 0 ? (std::filesystem::path(std::string(exe, static_cast<size_t>(n))).parent_path() /
-                                      "libslowlight_label.so").string()
-                                   : std::string();
-        void* l = beside.empty() ? nullptr : dlopen(beside.c_str(), RTLD_NOW | RTLD_LOCAL);
-        if (!l) l = dlopen("libslowlight_label.so", RTLD_NOW | RTLD_LOCAL);
-        if (!l) {
-            const char* e = dlerror();
-            load_error = "cannot load the label writer libslowlight_label.so: " + std::string(e ? e : "not found");
-        }
-        return l;
-    }();
-    why = load_error;
-    return lib;
-}
-
-}  // namespace
-
 TimeLabel::TimeLabel(int width, int height) : graph_(std::make_unique<Graph>()), width_(width), height_(height) {
-    std::string why;
-    void* lib = plugin(why);
-    if (!lib) throw RuntimeFailure("--label: " + why);
+    static const Plugin plugin = load_plugin("libslowlight_label.so", "the label writer",
+                                             {"slowlight_label_open", "slowlight_label_burn", "slowlight_label_close"});
+    if (!plugin.error.empty()) throw RuntimeFailure("--label: " + plugin.error);
     Graph& g = *graph_;
-    g.open = reinterpret_cast<Graph::OpenFn>(dlsym(lib, "slowlight_label_open"));
-    g.burn = reinterpret_cast<Graph::BurnFn>(dlsym(lib, "slowlight_label_burn"));
-    g.close = reinterpret_cast<Graph::CloseFn>(dlsym(lib, "slowlight_label_close"));
-    if (!g.open || !g.burn || !g.close) throw RuntimeFailure("--label: libslowlight_label.so lacks its functions");
+    g.open = plugin.function<Graph::OpenFn>(0);
+    g.burn = plugin.function<Graph::BurnFn>(1);
+    g.close = plugin.function<Graph::CloseFn>(2);
     char error[512] = {};
     g.handle = g.open(width, height, error, sizeof error);
     if (!g.handle) throw RuntimeFailure(std::string("--label: ") + error);

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstddef>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -13,7 +14,7 @@
 #include <utility>
 #include <vector>
 
-#include "foundation/checksum64.h"
+#include "foundation/xxh64.h"
 #include "foundation/errors.h"
 
 namespace sl {
@@ -34,6 +35,8 @@ struct Header {
     uint64_t payload_bytes, payload_checksum;
 };
 static_assert(sizeof(Header) + 8 <= kSectionStateHeaderBytes);
+// Where docs/checkpoints.md tells a user to find the sums that `xxhsum -H1` reproduces.
+static_assert(offsetof(Header, format) == 8 && offsetof(Header, payload_checksum) == 144);
 
 void put_text(char (&dst)[32], const std::string& s) {
     std::memset(dst, 0, sizeof dst);
@@ -42,7 +45,7 @@ void put_text(char (&dst)[32], const std::string& s) {
 std::string get_text(const char (&src)[32]) { return std::string(src, strnlen(src, sizeof src)); }
 
 uint64_t header_checksum(const unsigned char* bytes) {
-    Checksum64 c;
+    Xxh64 c;
     c.update(bytes, kSectionStateHeaderBytes - 8);
     return c.value();
 }
@@ -125,7 +128,7 @@ uint64_t save_section_state_from(const std::string& path, const SectionStateId& 
     try {
         unsigned char head[kSectionStateHeaderBytes] = {};
         write_all(f.fd(), head, sizeof head, path);  // filled in at the end
-        Checksum64 sum;
+        Xxh64 sum;
         std::vector<char> stage;
         walk_payload(pixels, ambient, [&](int array, size_t p0, size_t p1) {
             stage.resize((p1 - p0) * section_state_pixel_bytes(array, slots));
@@ -246,6 +249,9 @@ Opened open_checked(const std::string& path, File& file) {
     std::memcpy(&o.h, head, sizeof o.h);
     uint64_t hc;
     std::memcpy(&hc, head + kSectionStateHeaderBytes - 8, 8);
+    if (o.h.format < kSectionStateFormat)  // format 1: a hand-written checksum, not XXH64
+        refuse(path, "written by an older slowlight (checkpoint format " + std::to_string(o.h.format) +
+                         ", this one reads format " + std::to_string(kSectionStateFormat) + ")");
     if (o.h.format != kSectionStateFormat)
         refuse(path, "format version " + std::to_string(o.h.format) + ", this program reads version " +
                          std::to_string(kSectionStateFormat));
@@ -298,7 +304,7 @@ void check_header(const std::string& path, const Opened& o, const SectionStateId
 // Reads the payload chunk by chunk; `take(array, p0, p1, bytes)` keeps what it wants.
 template <class Take>
 void read_payload(const std::string& path, const Opened& o, size_t pixels, int slots, bool ambient, Take&& take) {
-    Checksum64 sum;
+    Xxh64 sum;
     std::vector<char> stage;
     walk_payload(pixels, ambient, [&](int array, size_t p0, size_t p1) {
         const size_t n = p1 - p0;

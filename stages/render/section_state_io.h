@@ -13,11 +13,14 @@
 //   header, 256 bytes: magic "SLCHKPT\n", format version, header size, program version,
 //     settings fingerprint, section index and count, passes done and asked for, whether the
 //     section is finished, width, height, slots, frames, ambient, max radius, volume radius^2,
-//     payload size, payload checksum, header checksum
+//     payload size, payload checksum (offset 144), header checksum (offset 248)
 //   radius2       f64[pixels]
 //   photon_count  f64[pixels]
 //   ambient       f32[pixels][3]            (only when the header says so)
 //   slots         f32[pixels][slots][3]
+//
+// Both checksums are XXH64 (seed 0), stored little-endian: the payload's of bytes 256 to the
+// end, the header's of bytes 0 to 247, so `xxhsum -H1` reproduces them (docs/checkpoints.md).
 //
 // Files are written to a temporary sibling, fsync'ed, renamed and the directory fsync'ed, so a
 // crash (kill -9, power loss) at any moment leaves either the previous checkpoint or the new
@@ -31,7 +34,7 @@
 
 namespace sl {
 
-inline constexpr uint32_t kSectionStateFormat = 1;
+inline constexpr uint32_t kSectionStateFormat = 2;  // 2: XXH64 checksums (1: hand-written ones)
 inline constexpr size_t kSectionStateHeaderBytes = 256;
 
 // Who a checkpoint belongs to; compared field by field when reading.

@@ -4,6 +4,7 @@
 #include <fstream>
 
 #include "foundation/errors.h"
+#include "core/import/resolve_imports.h"
 #include "core/scene_geometry.h"
 #include "hard_helpers.h"
 
@@ -79,7 +80,7 @@ TEST(DegenerateTriangles, AreDroppedAndTheRestRenders) {
         return std::string(R"({"type": "mesh", "file": ")") + file + R"(", "translate": [-0.5, 0.2, 0], "material": "white"})";
     };
     SceneDesc s = parse_scene_text(scene_with(kFloor + ", " + mesh("mixed.obj"), kPoint), "scene.json", dir.path());
-    SceneGeometry g(s);
+    SceneGeometry g(with_imports(s));  // the OBJ read as a render reads it (core/import)
     EXPECT_EQ(g.triangle_count(), 2u /* floor */ + 1u /* the one real triangle */);
     Rendered r = render(s);
     EXPECT_EQ(r.buffer_non_finite, 0u);
@@ -90,7 +91,7 @@ TEST(DegenerateTriangles, AreDroppedAndTheRestRenders) {
     // names the mesh.
     try {
         SceneDesc bad = parse_scene_text(scene_with(kFloor + ", " + mesh("flat.obj"), kPoint), "scene.json", dir.path());
-        SceneGeometry gb(bad);
+        SceneGeometry gb(with_imports(bad));
         ADD_FAILURE() << "a mesh without area was accepted";
     } catch (const InputError& e) {
         std::string msg = e.what();

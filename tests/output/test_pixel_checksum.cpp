@@ -1,6 +1,6 @@
-// The checksum every EXR frame carries for --resume: pinned to values computed by a separate
-// implementation (Python), sensitive to every bit, and frames written with the older byte-wise
-// checksum are still verified with it.
+// The checksum every EXR frame carries for --resume: XXH64, pinned to published values and to
+// what `xxhsum -H1` prints for the same bytes, sensitive to every bit; frames an older build
+// wrote (other checksum keys) are refused as an older slowlight's, not as another render's.
 #include "stages/output/exr_frame_check.h"
 
 #include <gtest/gtest.h>
@@ -10,26 +10,38 @@
 #include <vector>
 
 #include "foundation/errors.h"
+#include "foundation/xxh64.h"
 #include "stages/output/exr_io.h"
 #include "tests/common/temp_dir.h"
 
 namespace sl {
 namespace {
 
-// 37 floats = four 32-byte words of every lane and 20 bytes of tail.
+// 37 floats = four 32-byte stripes and 20 bytes of tail.
 std::vector<float> quarters() {
     std::vector<float> v(37);
     for (size_t i = 0; i < v.size(); ++i) v[i] = 0.25f * static_cast<float>(i);
     return v;
 }
 
-TEST(PixelChecksum, MatchesAnIndependentImplementation) {
+TEST(PixelChecksum, IsXxh64) {
+    // XXH64's published answers (seed 0).
+    EXPECT_EQ(Xxh64().value(), 0xEF46DB3751D8E999ull);
+    Xxh64 abc;
+    abc.update("abc", 3);
+    EXPECT_EQ(abc.value(), 0x44BC2CF5AD770999ull);
+    // Streamed in pieces that split stripes: the same as at once.
     const std::vector<float> v = quarters();
-    // python3, from foundation/checksum64.h's lanes and finaliser written out by hand.
-    EXPECT_EQ(pixel_checksum(v.data(), v.size()), "f4e234e4aab5a8be");
-    EXPECT_EQ(pixel_checksum(nullptr, 0), "9090306c6e91ed59");
-    EXPECT_EQ(pixel_checksum_bytewise(v.data(), v.size()), "0ec601feac37003a");
-    EXPECT_EQ(pixel_checksum_bytewise(nullptr, 0), "14650fb0739d0383");
+    Xxh64 pieces;
+    auto* bytes = reinterpret_cast<const char*>(v.data());
+    pieces.update(bytes, 5), pieces.update(bytes + 5, 0), pieces.update(bytes + 5, 60);
+    pieces.update(bytes + 65, v.size() * sizeof(float) - 65);
+    char hex[17];
+    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(pieces.value()));
+    // `xxhsum -H1` of the 148 bytes of 0.25 * i (i = 0..36) as little-endian float32.
+    EXPECT_EQ(pixel_checksum(v.data(), v.size()), "5876245eb00a992b");
+    EXPECT_EQ(std::string(hex), "5876245eb00a992b");
+    EXPECT_EQ(pixel_checksum(nullptr, 0), "ef46db3751d8e999");
 }
 
 TEST(PixelChecksum, EveryBitFlipChangesIt) {
@@ -47,7 +59,7 @@ TEST(PixelChecksum, EveryBitFlipChangesIt) {
     EXPECT_NE(pixel_checksum(v.data(), v.size()), base);
 }
 
-TEST(PixelChecksum, FramesWithTheByteWiseChecksumStillVerify) {
+TEST(PixelChecksum, FramesOfAnOlderSlowlightAreRefused) {
     test::TempDir dir("checksum_old");
     const std::string path = dir.file("frame_0003.exr");
     std::vector<float> rgb(4 * 4 * 3);
@@ -55,18 +67,29 @@ TEST(PixelChecksum, FramesWithTheByteWiseChecksumStillVerify) {
     const ExrExpectation want{4, 4, "slowlight:settings", "abc", 3};
     std::map<std::string, std::string> meta{{"slowlight:settings", "abc"}, {kFrameIndexKey, "3"}};
 
-    meta[kByteChecksumKey] = pixel_checksum_bytewise(rgb.data(), rgb.size());
-    write_exr(path, 4, 4, rgb.data(), meta);
-    EXPECT_EQ(read_verified_exr(path, want), rgb);
-
-    meta[kByteChecksumKey] = pixel_checksum(rgb.data(), rgb.size());  // the other function's digits
-    write_exr(path, 4, 4, rgb.data(), meta);
-    EXPECT_THROW(read_verified_exr(path, want), RuntimeFailure);
-
-    meta.erase(kByteChecksumKey);
     meta[kChecksumKey] = pixel_checksum(rgb.data(), rgb.size());
     write_exr(path, 4, 4, rgb.data(), meta);
     EXPECT_EQ(read_verified_exr(path, want), rgb);
+
+    meta[kChecksumKey] = "5876245eb00a992b";  // another image's digits
+    write_exr(path, 4, 4, rgb.data(), meta);
+    EXPECT_THROW(read_verified_exr(path, want), RuntimeFailure);
+
+    meta.erase(kChecksumKey);
+    for (const char* older : kOlderChecksumKeys)
+        for (const char* fingerprint : {"abc", "an older fingerprint"}) {
+            meta[older] = "0123456789abcdef";
+            meta["slowlight:settings"] = fingerprint;
+            write_exr(path, 4, 4, rgb.data(), meta);
+            try {
+                read_verified_exr(path, want);
+                ADD_FAILURE() << older << " accepted";
+            } catch (const InputError& e) {
+                EXPECT_NE(std::string(e.what()).find("written by an older slowlight"), std::string::npos) << e.what();
+                EXPECT_NE(std::string(e.what()).find(older), std::string::npos) << e.what();
+            }
+            meta.erase(older);
+        }
 }
 
 }  // namespace

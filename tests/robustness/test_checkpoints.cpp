@@ -3,8 +3,12 @@
 // stopped; a checkpoint that is not exactly this render's is refused with one `error:` line.
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <random>
+#include <sstream>
 
 #include "checkpoint_helpers.h"
 #include "tests/common/video_reader.h"
@@ -214,6 +218,11 @@ TEST(Checkpoints, BrokenForeignAndOtherVersionCheckpointsAreRefused) {
     put_bytes(s.ckpt, b);
     expect_refused(s, s.args, "format version 7");
 
+    b = good;
+    b[8] = 1;  // what an older build wrote: format 1, checksums that were not XXH64
+    put_bytes(s.ckpt, b);
+    expect_refused(s, s.args, "written by an older slowlight (checkpoint format 1, this one reads format 2)");
+
     // The same state, written by another version of the program.
     put_bytes(s.ckpt, good);
     SectionStateInfo info = read_section_state_info(s.ckpt);
@@ -232,6 +241,42 @@ TEST(Checkpoints, BrokenForeignAndOtherVersionCheckpointsAreRefused) {
     expect_refused(s, test::with(s.args, {"--seed", "2"}), "different scene or settings");
     expect_refused(s, test::with(s.args, {"--width", "32"}), "different scene or settings");
 
+    fs::remove_all(s.dir);
+}
+
+// The first word a shell command prints ("" if it fails): xxhsum's digits, od's number.
+std::string first_word_of(const std::string& command) {
+    std::string out;
+    if (FILE* p = popen(command.c_str(), "r")) {
+        char buf[256];
+        while (fgets(buf, sizeof buf, p)) out += buf;
+        if (pclose(p) != 0) return "";
+    }
+    std::string word;
+    std::istringstream(out) >> word;
+    return word;
+}
+
+// docs/checkpoints.md's commands, run on a real render's checkpoint: `xxhsum -H1` (XXH64) of
+// the payload and of the header prints the sums slowlight recorded at offsets 144 and 248.
+TEST(Checkpoints, XxhsumReproducesTheRecordedChecksums) {
+    if (std::system("command -v xxhsum >/dev/null 2>&1") != 0) GTEST_SKIP() << "xxhsum is not installed";
+    Saved s = interrupted_render("xxhsum");
+    const std::vector<char> file = bytes_of(s.ckpt);
+    ASSERT_GT(file.size(), kSectionStateHeaderBytes);
+    auto recorded = [&](size_t offset) {
+        uint64_t v;
+        std::memcpy(&v, file.data() + offset, 8);
+        char hex[17];
+        std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(v));
+        return std::string(hex);
+    };
+    const std::string f = "'" + s.ckpt + "'";
+    EXPECT_EQ(first_word_of("tail -c +257 " + f + " | xxhsum -H1"), recorded(144));
+    EXPECT_EQ(first_word_of("head -c 248 " + f + " | xxhsum -H1"), recorded(248));
+    EXPECT_EQ(first_word_of("od -An -tx8 -j144 -N8 " + f), recorded(144));
+    EXPECT_EQ(first_word_of("od -An -tx8 -j248 -N8 " + f), recorded(248));
+    EXPECT_EQ(recorded(144).size(), 16u);
     fs::remove_all(s.dir);
 }
 
