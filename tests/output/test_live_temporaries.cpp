@@ -6,6 +6,7 @@
 
 #include <fstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "stages/output/atomic_file.h"
@@ -44,6 +45,40 @@ TEST(LiveTemporaries, AllAreRemovedBeyondSixtyFour) {
     }
     EXPECT_EQ(left, 0) << "temporaries left behind";
     EXPECT_EQ(committed, 100) << "committed files must stay";
+}
+
+// Several threads making and committing temporaries at once (the output writers do): nodes
+// freed by one thread are taken by another, and still every live one is removed and no
+// committed file is touched.
+TEST(LiveTemporaries, ThreadsMakingAndCommittingAtOnce) {
+    sl::test::TempDir dir;
+    constexpr int kThreads = 4, kEach = 300;
+    const pid_t child = ::fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+        std::vector<std::thread> threads;
+        for (int t = 0; t < kThreads; ++t)
+            threads.emplace_back([&, t] {
+                for (int k = 0; k < kEach; ++k) {
+                    const std::string final_name = dir.file("t" + std::to_string(t) + "_" + std::to_string(k));
+                    const std::string temp = sl::temp_sibling(final_name);
+                    std::ofstream(temp) << k;
+                    if (k % 2 == 0) sl::commit_file(temp, final_name);  // every other one stays live
+                }
+            });
+        for (std::thread& t : threads) t.join();
+        sl::remove_live_temporaries_and_exit(0);
+    }
+    int status = 0;
+    ASSERT_EQ(::waitpid(child, &status, 0), child);
+    ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << status;
+    int committed = 0, left = 0;
+    for (const std::string& name : dir.entries()) {
+        if (name.rfind(sl::kTempPrefix, 0) == 0) ++left;
+        else ++committed;
+    }
+    EXPECT_EQ(left, 0) << "temporaries left behind";
+    EXPECT_EQ(committed, kThreads * kEach / 2);
 }
 
 }  // namespace
