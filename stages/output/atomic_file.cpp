@@ -22,11 +22,12 @@ namespace fs = std::filesystem;
 namespace {
 
 // The id this process recorded a temporary under: N of `.slowlight-tmp-<pid>-<N>-<name>`
-// (-1: not one of ours).
-int64_t temp_id(const std::string& temp) {
-    const std::string name = fs::path(temp).filename().string();
-    if (name.rfind(kTempPrefix, 0) != 0) return -1;
-    const char* pid = name.c_str() + std::strlen(kTempPrefix);
+// (-1: not one of ours). Reads the text in place: it runs in noexcept code.
+int64_t temp_id(const std::string& temp) noexcept {
+    const size_t slash = temp.rfind('/');
+    const char* name = temp.c_str() + (slash == std::string::npos ? 0 : slash + 1);
+    if (std::strncmp(name, kTempPrefix, std::strlen(kTempPrefix)) != 0) return -1;
+    const char* pid = name + std::strlen(kTempPrefix);
     char* after = nullptr;
     const unsigned long long writer = std::strtoull(pid, &after, 10);
     if (after == pid || *after != '-' || writer != static_cast<unsigned long long>(::getpid())) return -1;
