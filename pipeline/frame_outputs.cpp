@@ -195,7 +195,7 @@ void FrameOutputs::drop_video(std::exception_ptr failure) {
         encoding_->wait();  // idle before the encoder goes (a failure of its own says no more)
     } catch (const std::exception&) {
     }
-    encoder_.reset();           // drops the video: its temporary removed, a pipe only closed
+    encoder_.reset();  // drops the video: its temporary removed, a pipe only closed
 }
 
 void FrameOutputs::finish() {
