@@ -4,6 +4,7 @@
 #include <tbb/info.h>
 
 #include <atomic>
+#include <cerrno>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -39,7 +40,7 @@
 #include "pipeline/run_stats.h"
 #include "pipeline/settings_fingerprint.h"
 #include "pipeline/scene_checks.h"
-#include "stages/output/atomic_file.h"
+#include "stages/output/live_temporaries.h"
 #include "pipeline/scene_info.h"
 #include "core/import/model_scene.h"
 #include "core/import/resolve_imports.h"
@@ -48,30 +49,37 @@
 namespace sl {
 namespace {
 
+// What the signal handlers read and write. They run on whichever thread the signal lands, at
+// any instruction, so they touch only lock-free atomics and call only async-signal-safe
+// functions (write, unlink, _exit); everything else (saving the section, the last lines, the
+// exit status) happens in normal code that watches g_cancel.
 std::atomic<bool> g_cancel{false};
 // Until outputs are opened nothing has been written, so a signal then ends the run at once.
 std::atomic<bool> g_setting_up{true};
 // Under MPI a launcher passes an interrupt to every rank: only rank 0 says so (one line per job).
 std::atomic<bool> g_signal_lines{true};
+// Under MPI: the ranks agreed to start rendering (a launcher's SIGTERM then means the job ends).
+std::atomic<bool> g_ranks_started{false};
+static_assert(std::atomic<bool>::is_always_lock_free, "read by signal handlers");
+
+void say_from_handler(const char* text, size_t size) {
+    const int saved_errno = errno;  // the interrupted code may be about to read it
+    ssize_t ignored = write(STDERR_FILENO, text, size);
+    (void)ignored;
+    errno = saved_errno;
+}
 
 extern "C" void on_signal(int) {
     if (g_setting_up.load()) {
         static const char msg[] = "slowlight: interrupted during set-up; nothing written\n";
-        if (g_signal_lines.load()) {
-            ssize_t ignored = write(STDERR_FILENO, msg, sizeof msg - 1);
-            (void)ignored;
-        }
+        if (g_signal_lines.load()) say_from_handler(msg, sizeof msg - 1);
         _exit(130);
     }
-    if (g_cancel.exchange(true)) {  // a second signal: stop at once, leaving no temporary behind
-        remove_live_temporaries();
-        _exit(130);
-    }
+    // A second signal: stop at once, leaving no temporary behind (files already committed stay).
+    if (g_cancel.exchange(true)) remove_live_temporaries_and_exit(130);
     static const char msg[] = "\nslowlight: interrupted: ending the pass in flight, then saving the section and "
                               "writing its frames (interrupt again to quit at once)\n";
-    if (!g_signal_lines.load()) return;
-    ssize_t ignored = write(STDERR_FILENO, msg, sizeof msg - 1);
-    (void)ignored;
+    if (g_signal_lines.load()) say_from_handler(msg, sizeof msg - 1);
 }
 
 // Several ranks (MPI): the exchange, and whether the ranks agreed to start rendering (before
@@ -79,25 +87,25 @@ extern "C" void on_signal(int) {
 struct Ranks {
     RankExchange* ex = nullptr;
     bool concurrent_channels = false;
-    bool started = false;
+    bool started() const { return g_ranks_started.load(); }
     bool root() const { return !ex || ex->rank() == 0; }
 };
 Ranks g_ranks;
 
 // Under MPI the launcher stops every rank with SIGTERM when one of them died: say so, from
 // rank 0, as the job's one error line (a rank blocked in a collective would never get to it).
+// The outputs are incomplete and stay so: their temporaries go.
 extern "C" void on_launcher_signal(int sig) {
-    if (!g_ranks.started || g_cancel.load()) {
-        if (g_cancel.exchange(true)) _exit(130);
+    if (!g_ranks_started.load() || g_cancel.load()) {
+        if (g_cancel.exchange(true)) remove_live_temporaries_and_exit(130);
         return;
     }
-    if (g_ranks.root()) {
-        const char msg[] = "error: the MPI launcher stopped this render (another rank has died or was killed); "
-                           "its outputs are incomplete\n";
-        ssize_t ignored = write(STDERR_FILENO, msg, sizeof msg - 1);
-        (void)ignored;
+    if (g_signal_lines.load()) {  // rank 0, cached before: no call into the exchange from here
+        static const char msg[] = "error: the MPI launcher stopped this render (another rank has died or was killed); "
+                                  "its outputs are incomplete\n";
+        say_from_handler(msg, sizeof msg - 1);
     }
-    _exit(128 + sig);
+    remove_live_temporaries_and_exit(128 + sig);
 }
 
 // Refuse up front what could only end in running out of memory.
@@ -223,7 +231,7 @@ int render(RunOptions o, const std::vector<std::string>& argv) {
     if (ex) {  // from here on every rank renders, or none does
         const int status = agree_to_start(*ex, 0, "");
         if (status != 0) return status;
-        g_ranks.started = true;
+        g_ranks_started = true;
         std::signal(SIGTERM, on_launcher_signal);
     }
     if (root) print_render_start(ctx, scene, plan, ex);
@@ -308,7 +316,7 @@ int run_cli(int argc, char** argv) {
             std::fprintf(stderr, "error: %s\n", message.c_str());
             return code;
         }
-        if (!g_ranks.started) return agree_to_start(*g_ranks.ex, code, message);
+        if (!g_ranks.started()) return agree_to_start(*g_ranks.ex, code, message);
         std::fprintf(stderr, "error: rank %d: %s\n", g_ranks.ex->rank(), message.c_str());
         g_ranks.ex->abort(code);
         return code;  // not reached: abort ends the process

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 #include <tbb/task_group.h>
@@ -130,14 +131,18 @@ void FrameOutputs::write_frame(int index, const std::vector<float>& rgb, bool on
             if (!settings_.png_dir.empty())
                 seconds_png += timed([&] { write_png(numbered(settings_.png_dir, "png", index), w, h, rgb8_.data()); });
             if (encoder_) {
-                // Converted here, into the staging frame the encoder is not reading, while the
-                // frame before is still being encoded.
-                const int slot = staging_slot_;
-                staging_slot_ ^= 1;
-                const double convert_s = timed([&] { encoder_->convert(rgb8_.data(), slot); });
-                encoding_->wait();  // the frame before (rethrows its failure)
-                seconds_video += convert_s;
-                encoding_->run([this, slot] { seconds_video += timed([&] { encoder_->send(slot); }); });
+                try {
+                    // Converted here, into the staging frame the encoder is not reading, while
+                    // the frame before is still being encoded.
+                    const int slot = staging_slot_;
+                    staging_slot_ ^= 1;
+                    const double convert_s = timed([&] { encoder_->convert(rgb8_.data(), slot); });
+                    encoding_->wait();  // the frame before (rethrows its failure)
+                    seconds_video += convert_s;
+                    encoding_->run([this, slot] { seconds_video += timed([&] { encoder_->send(slot); }); });
+                } catch (const RuntimeFailure&) {
+                    drop_video(std::current_exception());
+                }
             }
         }
     } catch (...) {
@@ -182,13 +187,30 @@ void FrameOutputs::write_cube_plane(const std::vector<float>& rgb) {
     if (cube_) cube_->append(rgb.data());
 }
 
+void FrameOutputs::drop_video(std::exception_ptr failure) {
+    const bool others = !settings_.exr_dir.empty() || !settings_.png_dir.empty() || cube_;
+    if (!others) std::rethrow_exception(failure);  // nothing else to deliver: stop now
+    if (!video_failure_) video_failure_ = failure;
+    try {
+        encoding_->wait();  // idle before the encoder goes (a failure of its own says no more)
+    } catch (const std::exception&) {
+    }
+    encoder_.reset();  // drops the video: its temporary removed, a pipe only closed
+}
+
 void FrameOutputs::finish() {
-    if (encoding_) encoding_->wait();
-    if (encoder_) seconds_video += timed([&] { encoder_->finish(); });
+    try {
+        if (encoding_ && encoder_) encoding_->wait();
+        if (encoder_) seconds_video += timed([&] { encoder_->finish(); });
+    } catch (const RuntimeFailure&) {
+        drop_video(std::current_exception());
+    }
     if (cube_ && cube_->planes_written() == settings_.timeline.frames + 2) {
         cube_->finish();
         write_cube_sidecar(settings_);
     }
+    // The video's failure, once everything else is complete.
+    if (video_failure_) std::rethrow_exception(std::exchange(video_failure_, nullptr));
 }
 
 }  // namespace sl

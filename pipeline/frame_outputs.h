@@ -5,6 +5,7 @@
 // is shared by frames and the steady image). The video encoder runs one frame behind, on
 // another thread, while the next frame is assembled, tone-mapped and converted.
 #include <cstdint>
+#include <exception>
 #include <map>
 #include <memory>
 #include <optional>
@@ -56,8 +57,10 @@ public:
     void write_frame(int index, const std::vector<float>& rgb, bool on_disk = false, const Metadata& extra = {}) override;
     void write_steady(const std::vector<float>& rgb, const Metadata& extra = {}) override;
     void write_cube_plane(const std::vector<float>& rgb) override;
-    // Closes the video so that it plays, and the cube. An encoder failure surfaces here or at
-    // the next write_frame (the encoder is a frame behind).
+    // Closes the video so that it plays, and the cube. A video that cannot be written (a pipe
+    // whose reader is gone, a full disk) is dropped and the other outputs go on: its failure is
+    // thrown here, once they are complete, or at once from write_frame when the video is the
+    // only output (the encoder is a frame behind, so it surfaces a frame late).
     void finish();
 
     std::string exr_frame_path(int index) const;
@@ -72,11 +75,14 @@ public:
     int64_t frames_written = 0;
 
 private:
+    void drop_video(std::exception_ptr failure);  // rethrows when nothing else is written
+
     OutputSettings settings_;
     std::optional<double> exposure_;
     std::vector<double> per_frame_exposure_;  // --exposure-follow
     std::unique_ptr<TimeLabel> label_;
     std::unique_ptr<VideoEncoder> encoder_;
+    std::exception_ptr video_failure_;  // the dropped video's, thrown by finish()
     std::unique_ptr<NpyCubeWriter> cube_;
     std::vector<uint8_t> rgb8_;
     // The encoder, on a thread of its own: with one thread for the whole chain it set the pace

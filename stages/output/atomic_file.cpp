@@ -6,11 +6,14 @@
 
 #include <atomic>
 #include <cerrno>
+#include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <system_error>
 
 #include "foundation/errors.h"
+#include "stages/output/live_temporaries.h"
 
 namespace sl {
 
@@ -18,30 +21,25 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Live temporaries, in fixed slots so that a signal handler can read them without locks or
-// allocation: a slot is claimed (1), filled, then published (2); cleared back to 0.
-constexpr int kSlots = 64;
-constexpr size_t kSlotChars = 4096;
-std::atomic<int> g_state[kSlots];
-char g_names[kSlots][kSlotChars];
-
-void remember(const std::string& temp) {
-    if (temp.size() >= kSlotChars) return;
-    for (int i = 0; i < kSlots; ++i) {
-        int expected = 0;
-        if (!g_state[i].compare_exchange_strong(expected, 1)) continue;
-        std::memcpy(g_names[i], temp.c_str(), temp.size() + 1);
-        g_state[i].store(2);
-        return;
-    }
+// The id this process recorded a temporary under: N of `.slowlight-tmp-<pid>-<N>-<name>`
+// (-1: not one of ours). Reads the text in place: it runs in noexcept code.
+int64_t temp_id(const std::string& temp) noexcept {
+    const size_t slash = temp.rfind('/');
+    const char* name = temp.c_str() + (slash == std::string::npos ? 0 : slash + 1);
+    if (std::strncmp(name, kTempPrefix, std::strlen(kTempPrefix)) != 0) return -1;
+    const char* pid = name + std::strlen(kTempPrefix);
+    char* after = nullptr;
+    const unsigned long long writer = std::strtoull(pid, &after, 10);
+    if (after == pid || *after != '-' || writer != static_cast<unsigned long long>(::getpid())) return -1;
+    const char* n = after + 1;
+    const unsigned long long id = std::strtoull(n, &after, 10);
+    if (after == n || *after != '-') return -1;
+    return static_cast<int64_t>(id);
 }
 
-void forget(const std::string& temp) {
-    for (int i = 0; i < kSlots; ++i)
-        if (g_state[i].load() == 2 && temp == g_names[i]) {
-            g_state[i].store(0);
-            return;
-        }
+void forget(const std::string& temp) noexcept {
+    const int64_t id = temp_id(temp);
+    if (id >= 0) forget_temporary(static_cast<uint64_t>(id));
 }
 
 bool is_temp_name(const fs::path& p) { return p.filename().string().rfind(kTempPrefix, 0) == 0; }
@@ -87,14 +85,15 @@ OutputPlace place_output(const std::string& path) {
 }
 
 std::string temp_sibling(const std::string& path) {
-    static std::atomic<unsigned> counter{0};
+    static std::atomic<uint64_t> counter{0};
     const OutputPlace place = place_output(path);
     if (place.in_place) return place.path;
     const fs::path p(place.path);
-    const std::string name = std::string(kTempPrefix) + std::to_string(::getpid()) + "-" +
-                             std::to_string(counter++) + "-" + p.filename().string();
+    const uint64_t id = counter++;
+    const std::string name = std::string(kTempPrefix) + std::to_string(::getpid()) + "-" + std::to_string(id) + "-" +
+                             p.filename().string();
     std::string temp = (p.parent_path() / name).string();
-    remember(temp);
+    remember_temporary(id, temp);
     return temp;
 }
 
@@ -114,11 +113,6 @@ void discard_file(const std::string& temp) noexcept {
     std::error_code ec;
     fs::remove(temp, ec);
     forget(temp);
-}
-
-void remove_live_temporaries() noexcept {
-    for (int i = 0; i < kSlots; ++i)
-        if (g_state[i].load() == 2) ::unlink(g_names[i]);
 }
 
 int remove_stale_temporaries(const std::string& dir) noexcept {

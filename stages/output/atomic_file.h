@@ -28,7 +28,7 @@ OutputPlace place_output(const std::string& path);
 // Where to write `path`'s bytes now: a fresh temporary beside its (link-resolved) target, or
 // `path` itself when it is written in place. Unique per process and call, so threads may write
 // siblings concurrently. Temporaries are remembered until committed or discarded, so that an
-// abrupt exit can remove them (remove_live_temporaries).
+// abrupt exit can remove them (remove_live_temporaries_and_exit, live_temporaries.h).
 std::string temp_sibling(const std::string& path);
 
 // Renames `temp` onto `path`'s target (nothing to do when written in place); on failure removes
@@ -37,10 +37,6 @@ void commit_file(const std::string& temp, const std::string& path);
 
 // Removes `temp` if it is one of our temporaries (never a file written in place); never throws.
 void discard_file(const std::string& temp) noexcept;
-
-// Removes every temporary of this process not yet committed. Async-signal-safe (unlink only):
-// called from a signal handler before an immediate exit.
-void remove_live_temporaries() noexcept;
 
 // Removes temporaries in `dir` left by runs that were killed (their pid no longer exists).
 // Returns how many were removed.

@@ -10,7 +10,6 @@ extern "C" {
 
 #include <atomic>
 #include <cerrno>
-#include <csignal>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
@@ -21,6 +20,7 @@ extern "C" {
 #include "foundation/errors.h"
 #include "stages/output/atomic_file.h"
 #include "stages/output/av_common.h"
+#include "stages/output/sigpipe_block.h"
 
 namespace sl {
 
@@ -166,6 +166,7 @@ struct VideoEncoder::State {
 
     // Frees everything; an unfinished temporary file is removed. Never throws.
     void release() noexcept {
+        SigpipeBlock pipe_safe;  // closing flushes what is buffered
         if (fmt && fmt->pb && !(fmt->oformat->flags & AVFMT_NOFILE)) avio_closep(&fmt->pb);
         if (renamed_at_end) discard_file(target);
         renamed_at_end = false;
@@ -184,7 +185,6 @@ struct VideoEncoder::State {
     void choose_target() {
         if (path == "-") {
             target = "pipe:1";  // libav's name for stdout
-            std::signal(SIGPIPE, SIG_IGN);  // a closed reader must give EPIPE, not kill us
             return;
         }
         const OutputPlace place = place_output(path);
@@ -198,7 +198,10 @@ struct VideoEncoder::State {
         renamed_at_end = true;
     }
 
+    // Every call that may write runs under a SigpipeBlock (a pipe or FIFO whose reader is gone
+    // must give EPIPE, not end the process); the writes happen on the calling thread.
     void open(const VideoSettings& vs) {
+        SigpipeBlock pipe_safe;  // the header
         quiet_libav_logs();
         check_settings(vs);
         const Container& c = container_for(vs.path);
@@ -303,6 +306,7 @@ struct VideoEncoder::State {
         if (finished) throw std::logic_error("VideoEncoder::send after finish");
         if (failed)
             throw RuntimeFailure("cannot write video " + where() + ": the encoder failed earlier");
+        SigpipeBlock pipe_safe;
         AVFrame* frame = staged[slot & 1];
         frame->pts = frames;
         encode(frame);
@@ -312,6 +316,7 @@ struct VideoEncoder::State {
     void finish() {
         if (finished) return;
         finished = true;
+        SigpipeBlock pipe_safe;  // the last packets, the trailer, the final flush
         // A half-written stream cannot be finished, and a file with no frame is no video: drop.
         if (failed || (frames == 0 && renamed_at_end)) {
             release();

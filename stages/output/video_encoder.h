@@ -30,8 +30,10 @@ class VideoEncoder {
 public:
     // Every check happens here, before any rendering: InputError for a bad setting, an unknown
     // extension or an encoder this FFmpeg lacks; RuntimeFailure when the output cannot be
-    // opened (missing directory, a directory, not writable). For "-", SIGPIPE is ignored from
-    // here on, so a closed pipe becomes a RuntimeFailure instead of killing the process.
+    // opened (missing directory, a directory, not writable). A pipe or FIFO whose reader is
+    // gone gives a RuntimeFailure from the call that wrote, not SIGPIPE: each call that may
+    // write blocks SIGPIPE in its own thread while it does (sigpipe_block.h); the process's
+    // disposition of SIGPIPE is never changed.
     static std::unique_ptr<VideoEncoder> open(const VideoSettings& settings);
 
     // One frame of width*height*3 sRGB bytes, row 0 = top, in presentation order.

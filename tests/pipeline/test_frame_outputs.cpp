@@ -1,10 +1,11 @@
 // FrameOutputs hands each tone-mapped frame to the video encoder on a task of its own and goes
 // on with the next frame: the video must still hold every frame, in order, and a failing
-// encoder must still end the run with its error.
+// encoder must still end the run with its error (after the other outputs are complete).
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -70,6 +71,38 @@ TEST(FrameOutputs, AFailingEncoderEndsTheRunWithItsError) {
     EXPECT_NE(error.find("cannot write video"), std::string::npos) << error;
     // The encoder runs one frame behind: its failure on frame k is reported by the next call.
     EXPECT_LE(frames_before_error, 2);
+}
+
+// A reader that goes away ends the video, not the run: every EXR frame is still written, and
+// the video's failure is reported once the others are complete.
+TEST(FrameOutputs, AClosedPipeEndsOnlyTheVideo) {
+    sl::test::TempDir dir;
+    int fds[2];
+    ASSERT_EQ(::pipe(fds), 0);
+    ::close(fds[0]);
+    sl::OutputSettings s = settings_for("-");
+    s.exr_dir = dir.file("exr");
+    std::string error;
+    int frames_written = -1;
+    {
+        sl::test::StdoutRedirect redirect(fds[1]);
+        try {
+            sl::FrameOutputs out(s);
+            for (int k = 0; k < kFrames; ++k) out.write_frame(k, grey(k));
+            frames_written = int(out.frames_written);
+            out.finish();
+        } catch (const sl::RuntimeFailure& e) {
+            error = e.what();
+        }
+    }
+    ::close(fds[1]);
+    EXPECT_EQ(frames_written, kFrames);
+    EXPECT_NE(error.find("cannot write video stdout"), std::string::npos) << error;
+    for (int k = 0; k < kFrames; ++k) {
+        char name[32];
+        std::snprintf(name, sizeof name, "frame_%04d.exr", k);
+        EXPECT_TRUE(std::filesystem::exists(dir.path() / "exr" / name)) << name;
+    }
 }
 
 }  // namespace

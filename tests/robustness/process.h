@@ -22,14 +22,15 @@ struct Child {
     std::string stderr_path;
 };
 
+// Stdout to `stdout_fd` (e.g. a pipe's end) when it is not negative, else to `stdout_path`.
 inline Child spawn(const std::vector<std::string>& args, const std::string& stderr_path,
-                   const std::string& stdout_path = "/dev/null") {
+                   const std::string& stdout_path = "/dev/null", int stdout_fd = -1) {
     Child c;
     c.stderr_path = stderr_path;
     c.pid = fork();
     if (c.pid == 0) {
         int err = open(stderr_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        int out = open(stdout_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        int out = stdout_fd >= 0 ? stdout_fd : open(stdout_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
         dup2(err, 2);
         dup2(out, 1);
         std::vector<char*> argv;

@@ -224,6 +224,10 @@ TEST(Interrupt, SecondSignalExitsAtOnceWithoutBrokenFiles) {
     if (fs::exists(dir + "/a.mkv")) {
         EXPECT_GT(read_video(dir + "/a.mkv").frames, 0);
     }
+    // And no temporary is left behind (the second signal removes every live one).
+    for (const std::string& d : {dir, dir + "/a"})
+        for (auto& e : fs::directory_iterator(d))
+            EXPECT_NE(e.path().filename().string().rfind(".slowlight-tmp-", 0), 0u) << e.path();
     fs::remove_all(dir);
 }
 
