@@ -1,38 +1,44 @@
 #!/usr/bin/env bash
-# Is the suite flaky? Runs the whole test suite (each test once, as `setup.sh test` does) N times
-# in a row while a second copy of the suite loops beside it for load, and stops at the first
-# failing run. Usage: bash scripts/soak-tests.sh [N=30] [LOG=soak.log] (after a build).
+# Is the suite flaky? Two copies of the whole test suite (each test once, as `setup.sh test`
+# runs it) loop side by side, so that every run has a second copy beside it for load, until N
+# runs have finished between them; the first failing run stops both.
+# Usage: bash scripts/soak-tests.sh [N=30] [LOG=soak.log]   (after a build)
 set -uo pipefail
 cd "$(dirname "$0")/.."
 n=${1:-30}
 log=${2:-soak.log}
 [[ -x build/slowlight ]] || { echo "soak: build first (bash scripts/setup.sh build)" >&2; exit 2; }
-
-# The load: the same suite, over and over, until the measured runs are done. Its own results are
-# kept apart (a failure there is reported too: it is the same suite under the same load).
-load_log=$log.load
-: >"$load_log"
-(
-  while :; do
-    ctest --test-dir build -j"$(nproc)" >>"$load_log" 2>&1 || echo "soak: the load copy failed a run" >>"$load_log"
-  done
-) &
-load_pid=$!
-trap 'pkill -P $load_pid 2>/dev/null; kill $load_pid 2>/dev/null' EXIT
-
+count=$log.count   # one line per finished run: "<copy> <run> passed|FAILED <seconds>"
 : >"$log"
-passed=0
-for ((i = 1; i <= n; i++)); do
-  start=$(date +%s)
-  if ctest --test-dir build -j"$(nproc)" --output-on-failure >"$log.run" 2>&1; then
-    passed=$((passed + 1))
-    echo "soak: run $i/$n passed ($(tail -n 3 "$log.run" | grep -o '[0-9]* tests passed.*' | head -n1), $(( $(date +%s) - start )) s)" | tee -a "$log"
-  else
-    echo "soak: run $i/$n FAILED after $(( $(date +%s) - start )) s:" | tee -a "$log"
-    grep -E "Failed|\*\*\*" "$log.run" | tee -a "$log"
-    cat "$log.run" >>"$log"
-    break
-  fi
-done
-echo "soak: $passed of $n runs passed in a row; the load copy's failures: $(grep -c 'load copy failed' "$load_log")" | tee -a "$log"
-[[ $passed -eq $n ]]
+: >"$count"
+
+# Each copy keeps its ctest logs apart (the tests themselves work in fresh temporary folders).
+for name in A B; do mkdir -p "build/soak-$name" && cp build/CTestTestfile.cmake "build/soak-$name/"; done
+
+copy() {  # copy NAME: runs the suite until N runs are counted or one fails
+  local name=$1 i=0 start out
+  while (($(grep -c . "$count") < n)) && ! grep -q FAILED "$count"; do
+    i=$((i + 1))
+    start=$(date +%s)
+    out=$log.$name.$i
+    if ctest --test-dir "build/soak-$name" -j"$(nproc)" --output-on-failure >"$out" 2>&1; then
+      echo "$name $i passed $(( $(date +%s) - start ))" >>"$count"
+      rm -f "$out"
+    else
+      echo "$name $i FAILED $(( $(date +%s) - start ))" >>"$count"
+    fi
+  done
+}
+copy A &
+a=$!
+copy B &
+b=$!
+wait $a $b
+
+passed=$(grep -c passed "$count")
+{
+  echo "soak: $(grep -c . "$count") runs of the suite, two at a time ($(nproc) cores), $passed passed:"
+  cat "$count"
+  for f in "$log".[AB].*; do [[ -e $f ]] && { echo "--- $f"; grep -E "Failed|\*\*\*|Failure|tests passed" "$f"; }; done
+} | tee "$log"
+[[ $passed -ge $n ]] && ! grep -q FAILED "$count"
