@@ -87,7 +87,7 @@ void BM_Render(benchmark::State& state) {
 void BM_PhotonPass(benchmark::State& state) {
     sl::SceneDesc scene = cornell(1);
     sl::RenderContext ctx(scene);
-    sl::SectionLayout layout = sl::make_section(ctx.timeline, ctx.scene.emission.mode, 1, 0);
+    sl::SectionLayout layout = sl::make_section(ctx.timeline, ctx.emission, 1, 0);
     sl::PhotonMap map;
     int pass = 0;
     for (auto _ : state) {

@@ -31,7 +31,7 @@ void measure_buffer(const SectionBuffer& buffer, const RenderContext& ctx, Expos
         if (!rgb.empty()) meter.add_steady(rgb.data(), ctx.pixels());
     }
     if (!meter.wants_frames()) return;
-    FrameAssembler a(buffer, ctx.scene.emission.mode, ctx.timeline.pulse_buckets);
+    FrameAssembler a(buffer, ctx.emission, ctx.timeline.pulse_buckets);
     for (int f = buffer.layout.first_frame; f < buffer.layout.end_frame; ++f) {
         a.frame(f, rgb);
         whole_image_of(ctx, rgb);
@@ -47,16 +47,16 @@ void measure_buffer(const SectionBuffer& buffer, const RenderContext& ctx, Expos
 ExposurePreview exposure_from_preview(const RenderContext& ctx, const ExposureRule& rule,
                                       const std::function<bool(int)>& stop) {
     ExposurePreview out;
-    const int passes = preview_passes(ctx.scene.render.passes);
+    const int passes = preview_passes(ctx.render.passes);
     auto on_pass = [&](int p) { out.passes = p; };
     auto cancelled = [&] { return stop(out.passes); };
-    const EmissionMode mode = ctx.scene.emission.mode;
+    const EmissionMode mode = ctx.emission;
     const bool steady_only = !(mode == EmissionMode::Pulse || rule.follow);
     // The steady image's mean is the light the whole room receives: a quarter of the photons
     // still puts four times as many on each preview pixel as the render does. Frames (pulses,
     // --exposure-follow) keep them all: the brightest of many noisy frame means is biased high.
-    const int64_t photons = steady_only ? std::max<int64_t>(1, ctx.scene.render.photons_per_pass / 4)
-                                        : ctx.scene.render.photons_per_pass;
+    const int64_t photons = steady_only ? std::max<int64_t>(1, ctx.render.photons_per_pass / 4)
+                                        : ctx.render.photons_per_pass;
     SceneDesc small = ctx.scene;
     // At least 64 pixels a side (or the image's own): a mean over fewer is too noisy.
     small.camera.width = std::max(std::min(64, ctx.width), ctx.width / 4);
@@ -81,7 +81,7 @@ ExposurePreview exposure_from_preview(const RenderContext& ctx, const ExposureRu
     // camera's part (paths, gathers, the beam estimate) times the ratio of pixels.
     if (out.passes > 0) {
         const double pixels = static_cast<double>(ctx.pixels()) / static_cast<double>(preview.pixels());
-        const double more = static_cast<double>(ctx.scene.render.photons_per_pass) / static_cast<double>(photons);
+        const double more = static_cast<double>(ctx.render.photons_per_pass) / static_cast<double>(photons);
         const StageTimes& t = run.times;
         out.full_pass_seconds = (more * t.photons + pixels * (t.camera_paths + t.gather + t.volume)) / out.passes;
     }
@@ -89,7 +89,7 @@ ExposurePreview exposure_from_preview(const RenderContext& ctx, const ExposureRu
 }
 
 ExposurePlan exposure_from_disk(const RenderContext& ctx, const ExposureRule& rule, const FrameOutputs& outputs) {
-    ExposureMeter meter(ctx.scene.emission.mode, rule, emitter_pixels(ctx));
+    ExposureMeter meter(ctx.emission, rule, emitter_pixels(ctx));
     ExrImage steady = read_exr(outputs.exr_steady_path(), outputs.frame_size());
     meter.add_steady(steady.rgb.data(), ctx.pixels());
     if (meter.wants_frames())

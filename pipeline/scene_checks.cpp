@@ -69,7 +69,7 @@ SceneFacts scene_facts(const RenderContext& ctx) {
     f.triangles = ctx.geometry.triangle_count();
     for (const ShapeDesc& s : ctx.scene.shapes) f.spheres += s.type == ShapeType::Sphere;
 
-    const bool tof = ctx.scene.render.camera_tof;
+    const bool tof = ctx.render.camera_tof;
     const std::vector<Visible> seen = visible_points(ctx);
     double first = 1e300, last = -1;
     for (size_t li = 0; li < ctx.scene.lights.size(); ++li) {

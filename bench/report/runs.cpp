@@ -84,7 +84,7 @@ RayRate bare_embree_rays_per_s(const sl::RenderContext& ctx, size_t rays, int ro
 }
 
 RayRate photon_pass_rays_per_s(const sl::RenderContext& ctx, int passes, int64_t photons_per_pass, int rounds) {
-    sl::SectionLayout layout = sl::make_section(ctx.timeline, ctx.scene.emission.mode, 1, 0);
+    sl::SectionLayout layout = sl::make_section(ctx.timeline, ctx.emission, 1, 0);
     sl::PhotonMap map;
     RayRate best;
     int pass = 0;

@@ -12,7 +12,7 @@ void gather_volume_at(const RenderContext& ctx, const PixelSegments& segments, c
     const HomogeneousMedium& medium = *ctx.medium;
     const BucketFinder bucket(ctx.timeline);  // every photon along the segments asks it
     const SectionLayout& layout = buffer.layout;
-    const bool tof = ctx.scene.render.camera_tof;
+    const bool tof = ctx.render.camera_tof;
     const double r2 = buffer.volume_radius2;
     const double n_inv = 1.0 / static_cast<double>(std::max<int64_t>(photons_emitted, 1));
     // The radius this pass; the pixel-footprint floor shrinks as the square root of its shrink.

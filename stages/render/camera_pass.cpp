@@ -54,8 +54,8 @@ struct PixelTracer {
     // `pixel`: in the image (it picks the random stream and the ray); `local_pixel`: in the buffer.
     void trace(size_t pixel, size_t local_pixel) {
         local = local_pixel;
-        const SceneDesc& sc = ctx.scene;
-        Rng rng(sc.render.seed, 1, static_cast<uint64_t>(pass), pixel);
+        const RenderDesc& settings = ctx.render;
+        Rng rng(settings.seed, 1, static_cast<uint64_t>(pass), pixel);
         float fx = static_cast<float>(pixel % ctx.width) + rng.uniform();
         float fy = static_cast<float>(pixel / ctx.width) + rng.uniform();
         Vec3 o = ctx.camera.position(), d = ctx.camera.direction(fx, fy);
@@ -67,7 +67,7 @@ struct PixelTracer {
         float tnear = 0;
         has_visible_point = false;
         segments.count = 0;
-        const bool tof = sc.render.camera_tof;
+        const bool tof = settings.camera_tof;
         for (;;) {
             SurfaceHit hit;
             ++rays;
@@ -94,7 +94,7 @@ struct PixelTracer {
                 store_visible_point(pixel, hit.position, hit.t, nf, ns, beta * albedo_at(m, hit), leg_ns, specular, rng);
                 return;
             }
-            if (++specular >= sc.render.max_depth) return;
+            if (++specular >= settings.max_depth) return;
             beta *= follow_specular(m, hit, o, d, inside, inside_ior, rng);
             tnear = 0;
             if (is_black(beta)) return;
@@ -112,7 +112,7 @@ struct PixelTracer {
             s.dir = d;
             s.length = t1 - t0;
             s.beta = beta;
-            s.depth_left = static_cast<uint32_t>(ctx.scene.render.max_depth - specular);
+            s.depth_left = static_cast<uint32_t>(ctx.render.max_depth - specular);
             s.camera_ns = leg_ns + t0 / kSpeedOfLight;
         }
         beta *= medium->transmittance(t1 - t0);
@@ -122,14 +122,14 @@ struct PixelTracer {
     // normal on the same side (cosines, gathering).
     void store_visible_point(size_t pixel, Vec3 p, float hit_t, Vec3 nf, Vec3 ns, Vec3 albedo_beta, double leg_ns,
                              int specular, Rng& rng) {
-        const SceneDesc& sc = ctx.scene;
-        const bool tof = sc.render.camera_tof;
+        const RenderDesc& settings = ctx.render;
+        const bool tof = settings.camera_tof;
         const double back_ns = tof ? leg_ns : 0.0;
         Vec3 f = albedo_beta * (1.0f / kPi);  // Lambertian BRDF times camera throughput
-        vp = VisiblePoint{p, ns, f, back_ns, static_cast<uint32_t>(sc.render.max_depth - specular)};
+        vp = VisiblePoint{p, ns, f, back_ns, static_cast<uint32_t>(settings.max_depth - specular)};
         has_visible_point = true;
         if (!buffer.ambient.empty()) {
-            Vec3 a = albedo_beta * sc.render.ambient;
+            Vec3 a = albedo_beta * settings.ambient;
             float* amb = &buffer.ambient[local * 3];
             amb[0] += a.x; amb[1] += a.y; amb[2] += a.z;
         }
@@ -214,7 +214,7 @@ CameraPassTimes camera_pass(const RenderContext& ctx, int pass, const PassPhoton
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const double cpu = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
     buffer.max_radius = std::sqrt(total.max_r2);
-    if (medium) buffer.volume_radius2 *= volume_radius_shrink(buffer.passes_done, ctx.scene.render.alpha);
+    if (medium) buffer.volume_radius2 *= volume_radius_shrink(buffer.passes_done, ctx.render.alpha);
     ++buffer.passes_done;
 
     CameraPassTimes times;

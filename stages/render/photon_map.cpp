@@ -29,12 +29,12 @@ struct PhotonPath {
     // bucket: such photons are traced on (they may scatter later light) but not stored. Only
     // without camera_tof, where a photon's time is its arrival time; with it, the camera leg
     // may still move an earlier photon into the section.
-    const bool drop_early = layout.carried && !ctx.scene.render.camera_tof;
+    const bool drop_early = layout.carried && !ctx.render.camera_tof;
     bool early(double t) const { return drop_early && ctx.timeline.bucket(t) < layout.first_bucket; }
 
     void trace(Rng& rng) {
-        const SceneDesc& sc = ctx.scene;
-        const int max_depth = sc.render.max_depth;
+        const RenderDesc& settings = ctx.render;
+        const int max_depth = settings.max_depth;
         EmittedPhoton e = ctx.lights.emit(rng);
         Vec3 o = e.origin, d = e.direction, flux = e.flux;
         double t = e.start_ns;
@@ -164,7 +164,7 @@ bool PhotonMap::trace(const RenderContext& ctx, const SectionLayout& layout, int
         batch.volume.clear();
         batch.hash.clear();
         if (abandon && abandon->load(std::memory_order_relaxed)) return;
-        Rng rng(ctx.scene.render.seed, 2, static_cast<uint64_t>(pass), b);
+        Rng rng(ctx.render.seed, 2, static_cast<uint64_t>(pass), b);
         PhotonPath path{ctx, layout, batch.records, medium, volume ? &batch.volume : nullptr};
         int64_t n = std::min<int64_t>(kBatch, count - static_cast<int64_t>(b) * kBatch);
         for (int64_t i = 0; i < n; ++i) path.trace(rng);

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/import/resolve_imports.h"
+#include <stdexcept>
 
 namespace sl {
 
@@ -17,8 +17,18 @@ Vec3 extent_max(const SceneDesc& d, const SceneGeometry& g) {
 }
 }  // namespace
 
+namespace {
+// Files are read once, by resolve_imports, before anything is built from them.
+const SceneDesc& resolved(const SceneDesc& desc) {
+    for (const ShapeDesc& s : desc.shapes)
+        if ((s.type == ShapeType::Mesh || s.type == ShapeType::Gltf) && !s.mesh)
+            throw std::logic_error("RenderContext: " + s.file + " was not imported (call resolve_imports first)");
+    return desc;
+}
+}  // namespace
+
 RenderContext::RenderContext(const SceneDesc& desc)
-    : scene(with_imports(desc)), geometry(scene), lights(scene, extent_min(scene, geometry), extent_max(scene, geometry)),
+    : scene(resolved(desc)), render(desc.render), emission(desc.emission.mode), geometry(scene), lights(scene, extent_min(scene, geometry), extent_max(scene, geometry)),
       materials(scene), camera(desc.camera) {
     timeline = timeline_of(desc);
     width = desc.camera.width;

@@ -17,9 +17,12 @@
 namespace sl {
 
 struct RenderContext {
+    // Builds from a scene whose imported files were read (resolve_imports): it reads no file.
     explicit RenderContext(const SceneDesc& desc);
 
-    SceneDesc scene;
+    SceneDesc scene;             // as parsed: for the checks and the exposure preview, not the passes
+    RenderDesc render;           // what the passes' loops read: seed, depth, alpha, camera_tof, ambient
+    EmissionMode emission = EmissionMode::Constant;
     SceneGeometry geometry;
     LightSet lights;
     MaterialTable materials;     // what the tracers read at a hit (built from scene.materials)
@@ -34,7 +37,7 @@ struct RenderContext {
     // The other processes rendering this image with this one (MPI ranks); null: this one alone.
     RankExchange* exchange = nullptr;
     size_t pixels() const { return static_cast<size_t>(width) * height; }
-    bool has_ambient() const { return !is_black(scene.render.ambient); }
+    bool has_ambient() const { return !is_black(render.ambient); }
 };
 
 // The initial gather radius: the scene's own, or about three pixel footprints at the middle of

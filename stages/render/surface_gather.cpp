@@ -33,7 +33,7 @@ uint32_t gather_surface_at(const RenderContext& ctx, const VisiblePoint& vp, con
         deposits.add(buffer.slot(pixel, s), wr * ph.r, wg * ph.g, wb * ph.b);
     });
     if (found > 0) {
-        const float alpha = ctx.scene.render.alpha;
+        const float alpha = ctx.render.alpha;
         const double count = buffer.photon_count[pixel];
         const double count_new = count + alpha * found;
         r2 *= count_new / (count + found);

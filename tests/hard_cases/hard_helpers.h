@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "core/import/resolve_imports.h"
 #include "config/parse_scene.h"
 #include "config/scene_desc.h"
 #include "pipeline/frames_in_memory.h"
@@ -54,7 +55,7 @@ struct Rendered {
 // Renders every frame and the steady image with `sections` sections (frame_by_frame: one per
 // frame, each with full paths, as `--strategy frame-by-frame`).
 inline Rendered render(const SceneDesc& scene, int sections = 1, bool frame_by_frame = false) {
-    RenderContext ctx(scene);
+    RenderContext ctx(with_imports(scene));  // imported files read first, as the program does
     Rendered out;
     out.width = ctx.width;
     out.height = ctx.height;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <vector>
 
+#include "core/import/resolve_imports.h"
 #include "config/scene_desc.h"
 #include "core/camera.h"
 #include "core/sampling.h"
@@ -27,7 +28,7 @@ struct Rendered {
 
 // One whole-timeline convergence (a single section), frames assembled in the scene's own mode.
 inline Rendered render_all(const SceneDesc& scene) {
-    RenderContext ctx(scene);
+    RenderContext ctx(with_imports(scene));  // imported files read first, as the program does
     Rendered out;
     out.width = ctx.width;
     out.height = ctx.height;

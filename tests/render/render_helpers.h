@@ -4,6 +4,7 @@
 #include <cmath>
 #include <vector>
 
+#include "core/import/resolve_imports.h"
 #include "pipeline/frames_in_memory.h"
 #include "pipeline/render_frames.h"
 #include "stages/render/render_context.h"
@@ -17,7 +18,7 @@ struct Rendered {
 };
 
 inline Rendered render_all(const SceneDesc& scene, int sections = 1) {
-    RenderContext ctx(scene);
+    RenderContext ctx(with_imports(scene));  // imported files read first, as the program does
     Rendered out;
     out.width = ctx.width;
     out.height = ctx.height;
