@@ -11,6 +11,7 @@
 #include <string_view>
 #include <unordered_map>
 
+#include "config/limits.h"
 #include "foundation/errors.h"
 #include "core/import/imported_file.h"
 
@@ -61,10 +62,14 @@ std::string rest_of(std::string_view line, std::string_view keyword) {
 struct LineReader {
     const std::string& file;
     size_t line_no = 0;
+    // A material library may be any file `mtllib` names (even /etc/passwd): its errors quote
+    // none of its text, only the file and the line.
+    bool quote = true;
 
     [[noreturn]] void fail(const std::string& why) const {
         throw InputError(file + ":" + std::to_string(line_no) + ": " + why);
     }
+    std::string q(std::string_view tok) const { return quote ? "'" + std::string(tok) + "'" : std::string("a value"); }
 
     float number(std::string_view tok) const {
         float v = 0;
@@ -72,9 +77,9 @@ struct LineReader {
         const char* e = b + tok.size();
         if (!tok.empty() && *b == '+') ++b;
         auto r = std::from_chars(b, e, v, std::chars_format::general);
-        if (r.ec == std::errc::result_out_of_range) fail("number '" + std::string(tok) + "' is out of range");
-        if (r.ec != std::errc() || r.ptr != e) fail("'" + std::string(tok) + "' is not a number");
-        if (!std::isfinite(v)) fail("number '" + std::string(tok) + "' is not finite");
+        if (r.ec == std::errc::result_out_of_range) fail("number " + q(tok) + " is out of range");
+        if (r.ec != std::errc() || r.ptr != e) fail(q(tok) + " is not a number");
+        if (!std::isfinite(v)) fail("number " + q(tok) + " is not finite");
         return v;
     }
 
@@ -102,9 +107,12 @@ struct LineReader {
     }
 };
 
+// The materials of every library an OBJ names, in the order read; a name defined again in a
+// later library means the later definition.
 struct MtlResult {
     std::map<std::string, int> index;
     std::vector<MaterialDesc> materials;
+    std::set<std::string> libraries;  // read already (a library named twice is read once)
 };
 
 // A texture statement's file: the last token (options such as -s or -bm come before it).
@@ -116,8 +124,7 @@ std::string texture_path(const LineReader& lr, const std::vector<std::string_vie
     if (p.is_relative()) p = dir / p;
     p = p.lexically_normal();
     std::error_code ec;
-    if (!fs::is_regular_file(p, ec))
-        lr.fail(std::string(t[0]) + " names a missing texture: " + p.string());
+    if (!fs::is_regular_file(p, ec)) lr.fail(std::string(t[0]) + " names a missing texture file");
     return p.string();
 }
 
@@ -133,12 +140,16 @@ int add_texture(ImportedFile& out, const std::string& path, bool srgb) {
 }
 
 void read_mtl(const std::string& path, ImportedFile& out, MtlResult& mtl) {
+    if (!mtl.libraries.insert(path).second) return;
     const std::string text = read_text(path, "material library (.mtl)");
     out.files.push_back(path);
     const fs::path dir = fs::path(path).parent_path();
     LineReader lr{path};
+    lr.quote = false;
     MaterialDesc* cur = nullptr;
-    struct Extra { Vec3 ks{0}; int illum = -1; float d = 1; bool ke_set = false; };
+    // This library's materials are mtl.materials[first..]; extra and notes are this call's.
+    const size_t first = mtl.materials.size();
+    struct Extra { Vec3 ks{0}; int illum = -1; float d = 1; bool ke_set = false; size_t ke_line = 0; };
     std::vector<Extra> extra;
     // What each material loses, gathered into one warning line per material at the end.
     std::vector<std::vector<std::string>> notes;
@@ -168,10 +179,10 @@ void read_mtl(const std::string& path, ImportedFile& out, MtlResult& mtl) {
             extra.emplace_back();
             notes.emplace_back();
             cur = &mtl.materials.back();
-            cur_index = mtl.materials.size() - 1;
+            cur_index = extra.size() - 1;
             continue;
         }
-        if (!cur) lr.fail("'" + std::string(k) + "' before any newmtl");
+        if (!cur) lr.fail("a statement before any newmtl: not a material library");
         Extra& x = extra.back();
         if (k == "Kd") {
             cur->albedo = lr.triple(t, 3);
@@ -180,6 +191,7 @@ void read_mtl(const std::string& path, ImportedFile& out, MtlResult& mtl) {
             cur->emission = lr.triple(t, t.size() == 2 ? 1 : 3);
             if (t.size() == 2) cur->emission = Vec3(cur->emission.x);
             x.ke_set = true;
+            x.ke_line = lr.line_no;
         } else if (k == "Ks") {
             x.ks = lr.triple(t, t.size() == 2 ? 1 : 3);
         } else if (k == "Ni") {
@@ -205,8 +217,8 @@ void read_mtl(const std::string& path, ImportedFile& out, MtlResult& mtl) {
         }
         // Ka, Ns, Tf, sharpness and other statements shape nothing this renderer draws.
     }
-    for (size_t i = 0; i < mtl.materials.size(); ++i) {
-        MaterialDesc& m = mtl.materials[i];
+    for (size_t i = 0; i < extra.size(); ++i) {
+        MaterialDesc& m = mtl.materials[first + i];
         cur = &m;
         cur_index = i;
         const Extra& x = extra[i];
@@ -234,14 +246,21 @@ void read_mtl(const std::string& path, ImportedFile& out, MtlResult& mtl) {
             warn_once("kd", "Kd outside [0, 1] is clamped");
             m.albedo = vmin(vmax(m.albedo, Vec3(0)), Vec3(1));
         }
-        if (m.emission.x < 0 || m.emission.y < 0 || m.emission.z < 0) lr.fail("Ke of '" + m.name + "' is negative");
+        if (m.emission.x < 0 || m.emission.y < 0 || m.emission.z < 0) {
+            lr.line_no = x.ke_line;
+            lr.fail("Ke is negative");
+        }
+        if (max_component(m.emission) > limits::kMaxEmission) {  // as a scene file's radiance
+            lr.line_no = x.ke_line;
+            lr.fail("Ke is larger than 1e30, the largest radiance accepted");
+        }
         if (max_component(m.reflectance) > 1) m.reflectance = vmin(m.reflectance, Vec3(1));
     }
     for (size_t i = 0; i < notes.size(); ++i) {
         if (notes[i].empty()) continue;
         std::string all;
         for (const std::string& n : notes[i]) all += (all.empty() ? "" : "; ") + n;
-        out.warnings.push_back(path + ": material '" + mtl.materials[i].name + "': " + all);
+        out.warnings.push_back(path + ": material '" + mtl.materials[first + i].name + "': " + all);
     }
 }
 
@@ -333,14 +352,24 @@ ImportedFile read_obj_mtl(const std::string& path, bool read_materials) {
             }
         } else if (k == "mtllib") {
             if (!read_materials) continue;
+            // One name that may hold spaces, or several names separated by spaces.
             std::string name = rest_of(line, "mtllib");
             if (name.empty()) lr.fail("mtllib names no file");
-            fs::path p(name);
-            if (p.is_relative()) p = dir / p;
+            auto resolve = [&](const std::string& n) {
+                fs::path p(n);
+                if (p.is_relative()) p = dir / p;
+                return p.lexically_normal();
+            };
             std::error_code ec;
-            if (!fs::is_regular_file(p, ec))
-                lr.fail("mtllib names a missing material library: " + p.lexically_normal().string());
-            read_mtl(p.lexically_normal().string(), out, mtl);
+            std::vector<fs::path> libs;
+            if (fs::is_regular_file(resolve(name), ec)) {
+                libs.push_back(resolve(name));
+            } else {
+                for (size_t i = 1; i < t.size(); ++i) libs.push_back(resolve(std::string(t[i])));
+            }
+            for (const fs::path& p : libs)
+                if (!fs::is_regular_file(p, ec)) lr.fail("mtllib names a missing material library: " + p.string());
+            for (const fs::path& p : libs) read_mtl(p.string(), out, mtl);
         } else if (k == "l" || k == "p") {
             if (warned.insert("lp").second)
                 out.warnings.push_back(path + ": lines and points (l, p) are ignored");

@@ -56,6 +56,38 @@ TEST(ImportErrors, MtlNamingAMissingTextureOrLibrary) {
     expect_rejected(dir.file("lib.obj"), "lib.obj:1", "missing material library");
 }
 
+// `mtllib` may name any file: an error in one that is no MTL names the file and the line and
+// quotes none of its text.
+TEST(ImportErrors, MtlErrorsQuoteNoneOfTheFile) {
+    TempDir dir;
+    write_text(dir.file("secret.txt"), "root:x:0:0:SECRET:/root:/bin/bash\n");
+    write_text(dir.file("leak.obj"), std::string("mtllib secret.txt\n") + kQuadObj);
+    expect_rejected(dir.file("leak.obj"), "secret.txt:1", "before any newmtl");
+    write_text(dir.file("secret.mtl"), "newmtl a\nKd SECRET 0 0\n");
+    write_text(dir.file("leak2.obj"), std::string("mtllib secret.mtl\n") + kQuadObj);
+    expect_rejected(dir.file("leak2.obj"), "secret.mtl:2", "not a number");
+    for (const char* obj : {"leak.obj", "leak2.obj"}) {
+        ProgramResult r = run_program({"info", dir.file(obj)});
+        EXPECT_EQ(r.err.find("SECRET"), std::string::npos) << r.err;
+    }
+}
+
+// Several libraries on one line, each must exist; a library named twice is read once.
+TEST(ImportErrors, MtllibOfSeveralNames) {
+    TempDir dir;
+    write_text(dir.file("many.obj"), lit_obj(dir, kQuadObj).replace(0, 14, "mtllib lit.mtl gone.mtl"));
+    expect_rejected(dir.file("many.obj"), "many.obj:1", "missing material library: " + dir.file("gone.mtl"));
+}
+
+// Emission far beyond any real light overflows the light's power (emission x area x pi) in
+// single precision: as in a scene file, radiance above 1e30 is refused.
+TEST(ImportErrors, MtlEmissionTooLarge) {
+    TempDir dir;
+    write_text(dir.file("sun.obj"), lit_obj(dir, kQuadObj, "newmtl sun\nKd 0 0 0\nKe 1e38 1e38 1e38\n") +
+                                        "usemtl sun\nf 1 2 3\n");
+    expect_rejected(dir.file("sun.obj"), "lit.mtl:6", "Ke is larger than 1e30");
+}
+
 TEST(ImportErrors, SceneWithoutAnyLight) {
     TempDir dir;
     write_text(dir.file("dark.obj"), kQuadObj);

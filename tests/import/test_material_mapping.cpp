@@ -9,6 +9,7 @@
 #include "core/texture.h"
 #include "tests/common/temp_dir.h"
 #include "tests/import/model_writers.h"
+#include "tests/pipeline/run_program.h"
 
 namespace sl::test {
 namespace {
@@ -70,6 +71,53 @@ TEST(MaterialMapping, MtlIllumKdKeNi) {
     EXPECT_FLOAT_EQ(f.materials[2].emission.y, 6.0f);
     EXPECT_EQ(f.mesh.tri_material, (std::vector<int32_t>{0, 1, 2}));
     EXPECT_TRUE(f.mesh.normals.empty());  // no vn: flat
+}
+
+// A cube as Blender 3.4 exports it, its materials in two libraries: named on two `mtllib`
+// lines, or both on one line. (Two lines crashed: the second library's materials were looked
+// up in the first's lists.)
+void write_blender_cube(const TempDir& dir, const std::string& mtllib_lines) {
+    auto mtl = [](const std::string& name, const char* kd, const char* ke) {
+        return "newmtl " + name + "\nNs 250.000000\nKa 1.000000 1.000000 1.000000\nKd " + kd +
+               "\nKs 0.500000 0.500000 0.500000\nKe " + ke + "\nNi 1.450000\nd 1.000000\nillum 2\n";
+    };
+    std::ofstream(dir.file("cube.mtl")) << "# Blender 3.4.1 MTL File: 'None'\n# www.blender.org\n\n"
+                                        << mtl("Material", "0.800000 0.800000 0.800000", "0.000000 0.000000 0.000000");
+    std::ofstream(dir.file("lamp.mtl")) << "# Blender 3.4.1 MTL File: 'None'\n# www.blender.org\n\n"
+                                        << mtl("Lamp", "0.000000 0.000000 0.000000", "5.000000 5.000000 5.000000");
+    std::ofstream o(dir.file("cube.obj"));
+    o << "# Blender 3.4.1\n# www.blender.org\n" << mtllib_lines << "o Cube\n";
+    for (const char* v : {"1.000000 1.000000 -1.000000", "1.000000 -1.000000 -1.000000", "1.000000 1.000000 1.000000",
+                          "1.000000 -1.000000 1.000000", "-1.000000 1.000000 -1.000000", "-1.000000 -1.000000 -1.000000",
+                          "-1.000000 1.000000 1.000000", "-1.000000 -1.000000 1.000000"})
+        o << "v " << v << "\n";
+    o << "vt 0.625000 0.500000\nvt 0.875000 0.500000\nvt 0.875000 0.750000\nvt 0.625000 0.750000\n"
+      << "vn -0.0000 1.0000 -0.0000\nvn -0.0000 -1.0000 -0.0000\ns 0\n"
+      << "usemtl Material\nf 1/1/1 5/2/1 7/3/1 3/4/1\n"
+      << "usemtl Lamp\nf 2/1/2 4/2/2 8/3/2 6/4/2\n";
+}
+
+TEST(MaterialMapping, MtlFromSeveralLibrariesAsBlenderWritesThem) {
+    for (const std::string lines : {"mtllib cube.mtl\nmtllib lamp.mtl\n", "mtllib cube.mtl lamp.mtl\n",
+                                    "mtllib cube.mtl\nmtllib lamp.mtl\nmtllib cube.mtl\n"}) {
+        SCOPED_TRACE(lines);
+        TempDir dir;
+        write_blender_cube(dir, lines);
+        ImportedFile f = read_obj_mtl(dir.file("cube.obj"), true);
+        ASSERT_EQ(f.materials.size(), 2u);  // a library named twice is read once
+        EXPECT_EQ(f.materials[0].name, "Material");
+        EXPECT_FLOAT_EQ(f.materials[0].albedo.x, 0.8f);
+        EXPECT_FALSE(f.materials[0].emits());
+        EXPECT_EQ(f.materials[1].name, "Lamp");
+        EXPECT_FLOAT_EQ(f.materials[1].emission.y, 5.0f);
+        EXPECT_EQ(f.mesh.tri_material, (std::vector<int32_t>{0, 0, 1, 1}));
+        // The program renders it (the lamp lights the scene).
+        ProgramResult r = run_program({"render", dir.file("cube.obj"), "--width", "16", "--height", "16", "--passes",
+                                       "1", "--photons", "1000", "--frames", "2", "--no-progress", "--stats",
+                                       dir.file("s.json")});
+        EXPECT_EQ(r.exit_code, 0) << r.err;
+        EXPECT_TRUE(r.error_lines().empty()) << r.err;
+    }
 }
 
 TEST(MaterialMapping, WrapModesAndBilinear) {
