@@ -60,6 +60,10 @@ LightSet::LightSet(const SceneDesc& scene, Vec3 bounds_min, Vec3 bounds_max) : e
         Light l;
         l.mesh = true;
         l.power = emitters_.power();
+        // Each material's emission is bounded, but not the area it covers.
+        if (!is_finite(l.power) || !std::isfinite(total_power_ + average(l.power)))
+            throw InputError(scene.source + ": the emissive triangles' power (emission times area) is too large "
+                             "for single precision");
         lights_.push_back(l);
         total_power_ += average(l.power);
         cdf_.push_back(total_power_);

@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "config/limits.h"
 #include "foundation/constants.h"
 #include "foundation/errors.h"
 #include "core/import/imported_file.h"
@@ -96,11 +97,65 @@ Mat4 local_matrix(const tinygltf::Node& n) {
 
 // Keeps an image's encoded bytes (tinygltf would decode it with stb): decoding happens later,
 // through OpenImageIO, for the images a drawn material uses.
-bool keep_encoded(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
-                  const unsigned char* bytes, int size, void*) {
+// tinygltf hands over an image inside a bufferView without checking the view against its
+// buffer (nor that its length fits an int): that is checked here, before a byte is copied.
+bool keep_encoded(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
+                  const unsigned char* bytes, int size, void* user_data) {
+    if (image->bufferView >= 0) {
+        const auto* model = static_cast<const tinygltf::Model*>(user_data);
+        const size_t v = static_cast<size_t>(image->bufferView);
+        const bool ok = v < model->bufferViews.size() &&
+                        static_cast<size_t>(model->bufferViews[v].buffer) < model->buffers.size() && [&] {
+                            const tinygltf::BufferView& bv = model->bufferViews[v];
+                            const size_t n = model->buffers[static_cast<size_t>(bv.buffer)].data.size();
+                            return bv.byteOffset <= n && bv.byteLength <= n - bv.byteOffset &&
+                                   bv.byteLength <= static_cast<size_t>(INT32_MAX);
+                        }();
+        if (!ok) {
+            if (err)
+                *err += "image " + std::to_string(index) + ": its bufferView " + std::to_string(image->bufferView) +
+                        " reaches past the end of its buffer";
+            return false;
+        }
+    }
     image->image.assign(bytes, bytes + std::max(size, 0));
     image->as_is = true;
     return true;
+}
+
+// The deepest nesting of arrays and objects the glTF JSON may have. tinygltf turns `extras` and
+// extensions into values recursively: 100,000 nested brackets overflowed the stack inside the
+// library, before any of this reader's checks. Real files nest under a dozen levels.
+constexpr size_t kMaxJsonDepth = 64;
+
+// Reads `length` bytes of JSON text from `f` and returns the offset (from the text's start) of
+// the first bracket that opens level kMaxJsonDepth + 1, or -1. Brackets inside strings do not
+// count. A linear scan in fixed memory: nothing is parsed.
+int64_t too_deep_at(std::FILE* f, uint64_t length) {
+    char chunk[1 << 16];
+    size_t depth = 0;
+    bool in_string = false, escaped = false;
+    uint64_t at = 0;
+    while (at < length) {
+        const size_t want = static_cast<size_t>(std::min<uint64_t>(sizeof chunk, length - at));
+        const size_t got = std::fread(chunk, 1, want, f);
+        if (got == 0) break;
+        for (size_t i = 0; i < got; ++i, ++at) {
+            const char c = chunk[i];
+            if (in_string) {
+                if (escaped) escaped = false;
+                else if (c == '\\') escaped = true;
+                else if (c == '"') in_string = false;
+            } else if (c == '"') {
+                in_string = true;
+            } else if (c == '[' || c == '{') {
+                if (++depth > kMaxJsonDepth) return static_cast<int64_t>(at);
+            } else if ((c == ']' || c == '}') && depth > 0) {
+                --depth;
+            }
+        }
+    }
+    return -1;
 }
 
 class GltfReader {
@@ -152,7 +207,7 @@ private:
 
     void load() {
         tinygltf::TinyGLTF loader;
-        loader.SetImageLoader(keep_encoded, nullptr);
+        loader.SetImageLoader(keep_encoded, &model_);  // model_ is the model being loaded
         std::string err, warn;
         std::error_code ec;
         if (!fs::is_regular_file(path_, ec)) fail("not found or not a regular file");
@@ -170,6 +225,7 @@ private:
             if (got < 4) fail("is too short to be glTF");
         }
         const bool binary = std::memcmp(magic, "glTF", 4) == 0;
+        check_json_depth(binary, size);
         bool ok = false;
         try {
             ok = binary ? loader.LoadBinaryFromFile(&model_, &err, &warn, path_)
@@ -191,6 +247,28 @@ private:
         for (size_t i = 0; i < model_.buffers.size(); ++i)
             if (model_.buffers[i].data.empty())
                 fail("buffer " + std::to_string(i) + " (" + model_.buffers[i].uri + ") could not be loaded");
+    }
+
+    // The JSON text (a .gltf file, or a .glb's first chunk) must nest at most kMaxJsonDepth levels.
+    void check_json_depth(bool binary, uintmax_t file_size) {
+        std::FILE* f = std::fopen(path_.c_str(), "rb");
+        if (!f) fail("cannot be opened");
+        uint64_t length = file_size;
+        bool ok = true;
+        if (binary) {
+            // 12-byte header, then the JSON chunk: its length, its type "JSON", its text.
+            unsigned char head[20];
+            ok = std::fread(head, 1, sizeof head, f) == sizeof head && std::memcmp(head + 16, "JSON", 4) == 0;
+            uint32_t chunk = 0;
+            std::memcpy(&chunk, head + 12, 4);  // little-endian, as the machine
+            length = std::min<uint64_t>(chunk, file_size > 20 ? file_size - 20 : 0);
+        }
+        // A .glb whose first chunk is not JSON is tinygltf's to refuse.
+        const int64_t at = ok ? too_deep_at(f, length) : -1;
+        std::fclose(f);
+        if (at >= 0)
+            fail("its JSON is nested more than " + std::to_string(kMaxJsonDepth) + " levels deep (byte " +
+                 std::to_string(at + (binary ? 20 : 0)) + ")");
     }
 
     void check_extensions() {
@@ -283,6 +361,10 @@ private:
                          static_cast<float>(strength);
         if (!is_finite(m.emission) || m.emission.x < 0 || m.emission.y < 0 || m.emission.z < 0)
             fail("material '" + name + "': the emission is negative or not finite");
+        // As a scene file's radiance: beyond 1e30 the light's power overflows single precision.
+        if (max_component(m.emission) > static_cast<float>(limits::kMaxEmission))
+            fail("material '" + name + "': the emission (emissiveFactor x emissiveStrength) is larger than 1e30, "
+                 "the largest radiance accepted");
         m.double_sided = gm.doubleSided;
         if (transmission > 0.5) {
             m.type = MaterialType::Dielectric;
@@ -342,19 +424,33 @@ private:
         if (a.bufferView < 0 || static_cast<size_t>(a.bufferView) >= model_.bufferViews.size())
             fail(ac + " has no valid bufferView");
         const tinygltf::BufferView& bv = model_.bufferViews[static_cast<size_t>(a.bufferView)];
+        const std::string bvn = "bufferView " + std::to_string(a.bufferView);
         if (bv.buffer < 0 || static_cast<size_t>(bv.buffer) >= model_.buffers.size())
-            fail(ac + ": its bufferView names no existing buffer");
+            fail(ac + ": its " + bvn + " names no existing buffer");
         const auto& buf = model_.buffers[static_cast<size_t>(bv.buffer)].data;
         const int csize = tinygltf::GetComponentSizeInBytes(static_cast<uint32_t>(a.componentType));
         const int ncomp = tinygltf::GetNumComponentsInType(static_cast<uint32_t>(a.type));
         if (csize <= 0 || ncomp <= 0) fail(ac + " has an unknown component type");
+        // Every size, offset, stride and count comes from the file: each sum and product is
+        // checked for overflow, and the view against its buffer, before a byte is read.
         const size_t elem = static_cast<size_t>(csize) * static_cast<size_t>(ncomp);
+        if (bv.byteOffset > buf.size() || bv.byteLength > buf.size() - bv.byteOffset)
+            fail(bvn + " (of " + ac + ") reaches past the end of buffer " + std::to_string(bv.buffer) + " (offset " +
+                 std::to_string(bv.byteOffset) + ", length " + std::to_string(bv.byteLength) + ", buffer " +
+                 std::to_string(buf.size()) + " bytes)");
+        if (bv.byteStride != 0 && bv.byteStride < elem)
+            fail(bvn + " (of " + ac + "): byteStride " + std::to_string(bv.byteStride) +
+                 " is smaller than the accessor's element of " + std::to_string(elem) + " bytes");
         const size_t stride = bv.byteStride > 0 ? bv.byteStride : elem;
         const size_t count = a.count;
-        const uint64_t begin = static_cast<uint64_t>(bv.byteOffset) + a.byteOffset;
-        const uint64_t need = count == 0 ? 0 : static_cast<uint64_t>(stride) * (count - 1) + elem;
-        if (a.byteOffset + need > bv.byteLength || begin + need > buf.size() || bv.byteOffset + bv.byteLength > buf.size())
-            fail(ac + " reaches past the end of its buffer (" + std::to_string(count) + " elements)");
+        size_t need = 0;  // stride * (count - 1) + elem
+        if (count > 0 && (__builtin_mul_overflow(stride, count - 1, &need) || __builtin_add_overflow(need, elem, &need)))
+            fail(ac + ": " + std::to_string(count) + " elements of stride " + std::to_string(stride) +
+                 " overflow any size");
+        if (a.byteOffset > bv.byteLength || need > bv.byteLength - a.byteOffset)
+            fail(ac + " reaches past the end of its " + bvn + " (" + std::to_string(count) + " elements from offset " +
+                 std::to_string(a.byteOffset) + ", " + std::to_string(bv.byteLength) + " bytes in the view)");
+        const size_t begin = bv.byteOffset + a.byteOffset;  // <= buf.size(): checked above
         return {buf.data() + begin, stride, count, elem, a.componentType, a.normalized};
     }
 
@@ -382,7 +478,7 @@ private:
         if (lit != n.extensions.end() && lit->second.Has("light")) {
             int li = lit->second.Get("light").GetNumberAsInt();
             if (li < 0 || static_cast<size_t>(li) >= model_.lights.size()) fail("node " + std::to_string(node) + ": light " + std::to_string(li) + " does not exist");
-            light(model_.lights[static_cast<size_t>(li)], m);
+            light(model_.lights[static_cast<size_t>(li)], li, m);
         }
         for (int c : n.children) visit(c, m, depth + 1);
     }
@@ -545,7 +641,7 @@ private:
         out_.camera = cam;
     }
 
-    void light(const tinygltf::Light& l, const Mat4& m) {
+    void light(const tinygltf::Light& l, int index, const Mat4& m) {
         Vec3 color{1, 1, 1};
         if (l.color.size() == 3) color = {static_cast<float>(l.color[0]), static_cast<float>(l.color[1]), static_cast<float>(l.color[2])};
         PunctualLight p;
@@ -559,7 +655,15 @@ private:
         p.position = apply_point(m, Vec3(0));
         p.direction = apply_vector(m, Vec3(0, 0, -1));
         std::string warning;
-        if (std::optional<LightDesc> d = map_punctual_light(p, warning)) out_.lights.push_back(*d);
+        if (std::optional<LightDesc> d = map_punctual_light(p, warning)) {
+            // The scene file's bound on a light's power (W) and a sun's irradiance (W/m^2).
+            const Vec3 e = d->type == LightType::Sun ? d->irradiance : d->power;
+            if (!is_finite(e) || max_component(e) > static_cast<float>(limits::kMaxEmission))
+                fail("light " + std::to_string(index) + (l.name.empty() ? "" : " ('" + l.name + "')") +
+                     ": its " + (d->type == LightType::Sun ? "irradiance" : "power") +
+                     " (colour x intensity) is larger than 1e30, the largest accepted");
+            out_.lights.push_back(*d);
+        }
         if (!warning.empty()) warn(warning);
     }
 

@@ -250,7 +250,7 @@ void read_mtl(const std::string& path, ImportedFile& out, MtlResult& mtl) {
             lr.line_no = x.ke_line;
             lr.fail("Ke is negative");
         }
-        if (max_component(m.emission) > limits::kMaxEmission) {  // as a scene file's radiance
+        if (max_component(m.emission) > static_cast<float>(limits::kMaxEmission)) {  // as a scene file's radiance
             lr.line_no = x.ke_line;
             lr.fail("Ke is larger than 1e30, the largest radiance accepted");
         }

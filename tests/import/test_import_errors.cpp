@@ -162,6 +162,100 @@ TEST(ImportErrors, GltfFaults) {
 
 // Found by fuzzing: a binary glTF whose buffer claims 0 bytes beside a BIN chunk made tinygltf
 // throw std::out_of_range out of its loader (the program ended with exit status 1).
+// Sizes, offsets, strides and counts forged so that offset + count x stride wraps around 64
+// bits (the old check passed, and the reader went on past the buffer into the heap).
+TEST(ImportErrors, GltfForgedSizesWrapNoCheck) {
+    TempDir dir;
+    const nlohmann::json ok = valid_gltf(dir);
+    auto j = ok;
+    j["accessors"][0]["count"] = uint64_t(1) << 62;  // x 12 bytes = 3 x 2^64: "needs" 0 bytes
+    expect_gltf_rejected(dir, j, "POSITION accessor 0: 4611686018427387904 elements of stride 12 overflow");
+    j = ok;
+    j["accessors"][0]["byteOffset"] = ~uint64_t(0) - 7;  // + 48 bytes wraps to 40
+    expect_gltf_rejected(dir, j, "POSITION accessor 0 reaches past the end of its bufferView 0");
+    j = ok;
+    j["bufferViews"][1]["byteOffset"] = 16;
+    j["bufferViews"][1]["byteLength"] = ~uint64_t(0) - 15;  // offset + length wraps to 0
+    expect_gltf_rejected(dir, j, "bufferView 1 (of mesh 0 primitive 0: NORMAL accessor 1) reaches past the end of buffer 0");
+    j = ok;
+    j["bufferViews"][0]["byteStride"] = 4;  // each VEC3 of floats is 12 bytes
+    expect_gltf_rejected(dir, j, "bufferView 0 (of mesh 0 primitive 0: POSITION accessor 0): byteStride 4 is smaller");
+    j = ok;  // an image inside a view that claims 100 MB of a buffer of a few hundred bytes
+    j["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 100000000}});
+    j["images"] = {{{"bufferView", j["bufferViews"].size() - 1}, {"mimeType", "image/png"}}};
+    expect_gltf_rejected(dir, j, "image 0: its bufferView 4 reaches past the end of its buffer");
+}
+
+// 100,000 nested arrays or objects in `extras` overflowed the stack inside tinygltf (which
+// converts them recursively) before any check of ours: the JSON text's depth is scanned first.
+TEST(ImportErrors, GltfNestedTooDeep) {
+    TempDir dir;
+    const std::string ok = valid_gltf(dir).dump();
+    const std::string arrays = std::string(100000, '[') + std::string(100000, ']');
+    std::string objects;
+    for (int i = 0; i < 100000; ++i) objects += "{\"a\":";
+    objects += "1" + std::string(100000, '}');
+    for (const std::string& deep : {arrays, objects}) {
+        std::string text = ok;
+        text.insert(1, "\"extras\":" + deep + ",");
+        write_text(dir.file("deep.gltf"), text);
+        std::filesystem::copy_file(dir.file("ok.bin"), dir.file("deep.bin"), std::filesystem::copy_options::overwrite_existing);
+        expect_rejected(dir.file("deep.gltf"), "deep.gltf", "its JSON is nested more than 64 levels deep");
+    }
+    // Brackets inside strings do not count; 64 levels (the file's object, extras, 62 arrays) are fine.
+    std::string text = ok;
+    text.insert(1, "\"extras\":{\"s\":\"" + arrays + "\",\"d\":" + std::string(62, '[') + std::string(62, ']') + "},");
+    write_text(dir.file("fine.gltf"), text);
+    std::filesystem::copy_file(dir.file("ok.bin"), dir.file("fine.bin"), std::filesystem::copy_options::overwrite_existing);
+    ProgramResult r = run_program({"info", dir.file("fine.gltf")});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    // The same in a .glb's JSON chunk (its buffer the .bin beside it).
+    text = ok;
+    text.insert(1, "\"extras\":" + arrays + ",");
+    while (text.size() % 4) text.push_back(' ');
+    std::ofstream glb(dir.file("deep.glb"), std::ios::binary);
+    auto u32 = [&](uint32_t v) { glb.write(reinterpret_cast<const char*>(&v), 4); };
+    glb.write("glTF", 4);
+    u32(2);
+    u32(static_cast<uint32_t>(20 + text.size()));
+    u32(static_cast<uint32_t>(text.size()));
+    glb.write("JSON", 4);
+    glb << text;
+    glb.close();
+    expect_rejected(dir.file("deep.glb"), "deep.glb", "its JSON is nested more than 64 levels deep");
+}
+
+// An emissive strength or a light intensity of 1e38 overflowed the light's power (and the
+// program aborted inside Embree): bounded as a scene file's lights are, at 1e30.
+TEST(ImportErrors, GltfEmissionOrIntensityTooLarge) {
+    TempDir dir;
+    const nlohmann::json ok = valid_gltf(dir);
+    auto j = ok;
+    j["materials"][0]["extensions"]["KHR_materials_emissive_strength"]["emissiveStrength"] = 1e38;
+    expect_gltf_rejected(dir, j, "material 'lamp': the emission (emissiveFactor x emissiveStrength) is larger than 1e30");
+    for (const char* type : {"point", "spot", "directional"}) {
+        SCOPED_TRACE(type);
+        j = ok;
+        j["extensionsUsed"].push_back("KHR_lights_punctual");
+        j["extensions"]["KHR_lights_punctual"]["lights"] = {{{"type", type}, {"name", "flash"}, {"intensity", 1e38}}};
+        if (std::string(type) == "spot") j["extensions"]["KHR_lights_punctual"]["lights"][0]["spot"] = nlohmann::json::object();
+        j["nodes"].push_back({{"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+        j["scenes"][0]["nodes"].push_back(1);
+        expect_gltf_rejected(dir, j, std::string("light 0 ('flash'): its ") +
+                                         (std::string(type) == "directional" ? "irradiance" : "power") +
+                                         " (colour x intensity) is larger than 1e30");
+    }
+}
+
+// Each material's emission is bounded, not the area it covers: the sum is checked too.
+TEST(ImportErrors, EmissiveTrianglesOfOverflowingPower) {
+    TempDir dir;
+    write_text(dir.file("big.mtl"), "newmtl sun\nKd 0 0 0\nKe 1e30 1e30 1e30\n");
+    write_text(dir.file("big.obj"), "mtllib big.mtl\nusemtl sun\nv 0 0 0\nv 100000 0 0\nv 100000 100000 0\n"
+                                    "v 0 100000 0\nf 1 2 3 4\n");
+    expect_rejected(dir.file("big.obj"), "big.obj", "the emissive triangles' power (emission times area) is too large");
+}
+
 TEST(ImportErrors, GltfBinaryBufferOfZeroBytes) {
     TempDir dir;
     std::string json = R"({"asset":{"version":"2.0"},"buffers":[{"byteLength":0}]})";
