@@ -117,6 +117,57 @@ void make_fixtures(const std::string& dir) {
     negative[7] = -1;
     npy("negative.npy", "(3, 1, 1, 3)", negative, one);
     npy("fps_1e9.npy", "(3, 1, 1, 3)", ok, R"({"start_ns": 0, "end_ns": 1, "frames": 1, "fps": 1e9, "width": 1, "height": 1})");
+    // Hostile models (run as `info fixtures/NAME`): an OBJ whose mtllib names a file that is no
+    // MTL, or a Ke of 1e38; an emissive OBJ quad whose power overflows; a glTF lamp quad (4 float
+    // VEC3 positions, 6 uint indices in lamp.bin) forged in one place each.
+    std::ofstream(dir + "/fixtures/secret.txt") << "root:x:0:0:SECRET:/root:/bin/bash\n";
+    const std::string quad = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n";
+    std::ofstream(dir + "/fixtures/leak.obj") << "mtllib secret.txt\n" << quad;
+    std::ofstream(dir + "/fixtures/hot.mtl") << "newmtl sun\nKd 0 0 0\nKe 1e38 1e38 1e38\n";
+    std::ofstream(dir + "/fixtures/hot.obj") << "mtllib hot.mtl\nusemtl sun\n" << quad;
+    std::ofstream(dir + "/fixtures/vast.mtl") << "newmtl sun\nKe 1e30 1e30 1e30\n";
+    std::ofstream(dir + "/fixtures/vast.obj") << "mtllib vast.mtl\nusemtl sun\nv 0 0 0\nv 100000 0 0\n"
+                                               << "v 100000 100000 0\nv 0 100000 0\nf 1 2 3 4\n";
+    {
+        const float pos[12] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+        const uint32_t idx[6] = {0, 1, 2, 0, 2, 3};
+        std::ofstream bin(dir + "/fixtures/lamp.bin", std::ios::binary);
+        bin.write(reinterpret_cast<const char*>(pos), sizeof pos);
+        bin.write(reinterpret_cast<const char*>(idx), sizeof idx);
+    }
+    const nlohmann::json lamp = nlohmann::json::parse(R"({"asset": {"version": "2.0"}, "scene": 0,
+        "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "material": 0}]}],
+        "materials": [{"name": "lamp", "emissiveFactor": [1, 1, 1]}],
+        "buffers": [{"uri": "lamp.bin", "byteLength": 72}],
+        "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48}, {"buffer": 0, "byteOffset": 48, "byteLength": 24}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3"},
+                      {"bufferView": 1, "componentType": 5125, "count": 6, "type": "SCALAR"}]})");
+    auto gltf = [&](const std::string& name, const std::string& patch) {
+        nlohmann::json j = lamp;
+        j.merge_patch(nlohmann::json::parse(patch));
+        std::ofstream(dir + "/fixtures/" + name) << j.dump();
+    };
+    gltf("count_wraps.gltf", R"({"accessors": [{"bufferView": 0, "componentType": 5126, "count": 4611686018427387904, "type": "VEC3"},
+                                              {"bufferView": 1, "componentType": 5125, "count": 6, "type": "SCALAR"}]})");
+    gltf("offset_wraps.gltf", R"({"accessors": [{"bufferView": 0, "byteOffset": 18446744073709551608, "componentType": 5126, "count": 4, "type": "VEC3"},
+                                               {"bufferView": 1, "componentType": 5125, "count": 6, "type": "SCALAR"}]})");
+    gltf("view_wraps.gltf", R"({"bufferViews": [{"buffer": 0, "byteOffset": 16, "byteLength": 18446744073709551600},
+                                               {"buffer": 0, "byteOffset": 48, "byteLength": 24}]})");
+    gltf("stride_4.gltf", R"({"bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48, "byteStride": 4},
+                                             {"buffer": 0, "byteOffset": 48, "byteLength": 24}]})");
+    gltf("image_view.gltf", R"({"bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48},
+                                               {"buffer": 0, "byteOffset": 48, "byteLength": 24},
+                                               {"buffer": 0, "byteOffset": 0, "byteLength": 100000000}],
+                               "images": [{"bufferView": 2, "mimeType": "image/png"}]})");
+    gltf("strength_1e38.gltf", R"({"extensionsUsed": ["KHR_materials_emissive_strength"], "materials": [{"name": "lamp",
+        "emissiveFactor": [1, 1, 1], "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 1e38}}}]})");
+    gltf("light_1e38.gltf", R"({"extensionsUsed": ["KHR_lights_punctual"], "scenes": [{"nodes": [0, 1]}],
+        "nodes": [{"mesh": 0}, {"extensions": {"KHR_lights_punctual": {"light": 0}}}],
+        "extensions": {"KHR_lights_punctual": {"lights": [{"type": "point", "name": "flash", "intensity": 1e38}]}}})");
+    std::string deep = lamp.dump();  // dumped as text: the JSON library would recurse as deep
+    deep.insert(1, "\"extras\":" + std::string(100000, '[') + std::string(100000, ']') + ",");
+    std::ofstream(dir + "/fixtures/deep.gltf") << deep;
 }
 
 std::string scene_text(const std::string& cell) {
