@@ -62,7 +62,7 @@ std::string rest_of(std::string_view line, std::string_view keyword) {
 struct LineReader {
     const std::string& file;
     size_t line_no = 0;
-    // A material library may be any file `mtllib` names (even /etc/passwd): its errors quote
+    // A material library may be any file `mtllib` names: its errors quote
     // none of its text, only the file and the line.
     bool quote = true;
 
@@ -368,7 +368,9 @@ ImportedFile read_obj_mtl(const std::string& path, bool read_materials) {
                 for (size_t i = 1; i < t.size(); ++i) libs.push_back(resolve(std::string(t[i])));
             }
             for (const fs::path& p : libs)
-                if (!fs::is_regular_file(p, ec)) lr.fail("mtllib names a missing material library: " + p.string());
+                if (!fs::is_regular_file(p, ec))
+                    lr.fail("mtllib names a missing material library: " + p.string() +
+                            (libs.size() > 1 ? " (nor is " + resolve(name).string() + " a file)" : ""));
             for (const fs::path& p : libs) read_mtl(p.string(), out, mtl);
         } else if (k == "l" || k == "p") {
             if (warned.insert("lp").second)

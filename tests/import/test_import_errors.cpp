@@ -77,6 +77,11 @@ TEST(ImportErrors, MtllibOfSeveralNames) {
     TempDir dir;
     write_text(dir.file("many.obj"), lit_obj(dir, kQuadObj).replace(0, 14, "mtllib lit.mtl gone.mtl"));
     expect_rejected(dir.file("many.obj"), "many.obj:1", "missing material library: " + dir.file("gone.mtl"));
+    // One name with a space in it is still one library.
+    write_text(dir.file("my lit.mtl"), "newmtl lamp\nKe 1 1 1\n");
+    write_text(dir.file("spaced.obj"), std::string("mtllib my lit.mtl\nusemtl lamp\n") + kQuadObj);
+    ProgramResult r = run_program({"info", dir.file("spaced.obj")});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
 }
 
 // Emission far beyond any real light overflows the light's power (emission x area x pi) in
