@@ -105,7 +105,8 @@ bool keep_encoded(tinygltf::Image* image, const int, std::string*, std::string*,
 
 class GltfReader {
 public:
-    GltfReader(const std::string& path, bool use_materials) : path_(path), use_materials_(use_materials) {}
+    GltfReader(const std::string& path, bool use_materials, LightUnits units)
+        : path_(path), use_materials_(use_materials), units_(units) {}
 
     ImportedFile read() {
         load();
@@ -559,12 +560,13 @@ private:
         p.position = apply_point(m, Vec3(0));
         p.direction = apply_vector(m, Vec3(0, 0, -1));
         std::string warning;
-        if (std::optional<LightDesc> d = map_punctual_light(p, warning)) out_.lights.push_back(*d);
+        if (std::optional<LightDesc> d = map_punctual_light(p, units_, warning)) out_.lights.push_back(*d);
         if (!warning.empty()) warn(warning);
     }
 
     std::string path_;
     bool use_materials_;
+    LightUnits units_;
     tinygltf::Model model_;
     ImportedFile out_;
     std::vector<bool> material_used_;
@@ -574,6 +576,8 @@ private:
 
 }  // namespace
 
-ImportedFile read_gltf(const std::string& path, bool read_materials) { return GltfReader(path, read_materials).read(); }
+ImportedFile read_gltf(const std::string& path, bool read_materials, LightUnits units) {
+    return GltfReader(path, read_materials, units).read();
+}
 
 }  // namespace sl

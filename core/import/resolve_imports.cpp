@@ -32,7 +32,8 @@ struct CameraNote { std::optional<CameraDesc> camera; };
 // Errors name the scene file first when the mesh came through one.
 ImportedFile read_file(const ShapeDesc& s, const std::string& scene_source) {
     try {
-        if (s.type == ShapeType::Gltf) return read_gltf(s.file, s.material < 0);
+        if (s.type == ShapeType::Gltf)
+            return read_gltf(s.file, s.material < 0, s.light_units.value_or(LightUnits::Photometric));
         return read_obj_mtl(s.file, s.material < 0);
     } catch (const InputError& e) {
         std::error_code ec;
