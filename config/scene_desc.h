@@ -84,6 +84,9 @@ struct ShapeDesc {
     // gltf: the units of its lights' intensities; empty: the command line's
     // --gltf-light-units, else photometric (core/import/resolve_imports.cpp)
     std::optional<LightUnits> light_units;
+    // mesh, gltf: the lights the file brought, lights[first_light, first_light + light_count)
+    // (filled by resolve_imports; for `info`'s per-file checks)
+    int first_light = 0, light_count = 0;
 };
 
 enum class LightType { Point, Quad, Spot, Laser, Sun };

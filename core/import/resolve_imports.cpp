@@ -94,6 +94,8 @@ void resolve_imports(SceneDesc& scene) {
         for (Vec3& n : mesh->normals) n = place.vector(n);
         for (int32_t& m : mesh->tri_material) m = material_map[static_cast<size_t>(m)];
         s.mesh = std::move(mesh);
+        s.first_light = static_cast<int>(scene.lights.size());
+        s.light_count = static_cast<int>(f.lights.size());
         for (LightDesc l : f.lights) {
             l.position = place.point(l.position);
             l.direction = normalize(place.vector(l.direction));
