@@ -86,6 +86,20 @@ const Option kOptions[] = {
      [](RunOptions& r, std::string_view f, std::string_view v) {
          r.overrides.photons = integer_value(f, v, 1, limits::kMaxPhotonsPerPass);
      }},
+    {kRender | kInfo, "--max-depth", "", "N", "bounces a photon or a camera path may take, 1..1000 (render.max_depth)",
+     [](RunOptions& r, std::string_view f, std::string_view v) {
+         r.overrides.max_depth = int_value(f, v, 1, limits::kMaxDepth);
+     }},
+    {kRender | kInfo, "--gltf-light-units", "", "U",
+     "glTF lights in photometric units (cd, lux: the default) or radiometric (W/sr, W/m^2)",
+     [](RunOptions& r, std::string_view f, std::string_view v) {
+         if (v == "photometric")
+             r.gltf_light_units = LightUnits::Photometric;
+         else if (v == "radiometric")
+             r.gltf_light_units = LightUnits::Radiometric;
+         else
+             bad_value(f, "must be photometric or radiometric, got '" + printable(v) + "'");
+     }},
     {kRender | kInfo, "--width", "", "W", "image width in pixels (camera.width)",
      [](RunOptions& r, std::string_view f, std::string_view v) {
          r.overrides.width = int_value(f, v, 1, limits::kMaxImageSide);

@@ -50,12 +50,19 @@ void apply_overrides(SceneDesc& scene, const RenderOverrides& o) {
     if (o.photons)
         scene.render.photons_per_pass =
             in_range<int64_t>("--photons", *o.photons, 1, limits::kMaxPhotonsPerPass);
+    if (o.max_depth) scene.render.max_depth = in_range("--max-depth", *o.max_depth, 1, limits::kMaxDepth);
     if (o.seed) scene.render.seed = *o.seed;
     if (o.camera_tof) scene.render.camera_tof = *o.camera_tof;
     if (o.emission) scene.emission = parse_emission_option(*o.emission);
     // New frames or a new width: the pulse must still be a whole number of frames.
     if (auto problem = check_pulse_width(scene.time, scene.emission))
         command_line_error(o.emission ? "--emission" : "--frames", *problem);
+}
+
+void apply_gltf_light_units(SceneDesc& scene, std::optional<LightUnits> units) {
+    if (!units) return;
+    for (ShapeDesc& s : scene.shapes)
+        if (s.type == ShapeType::Gltf && !s.light_units) s.light_units = units;
 }
 
 }  // namespace sl

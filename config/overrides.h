@@ -2,6 +2,7 @@
 // The command line's render overrides (--frames, --passes, --width, --emission, ...) applied to
 // a parsed scene, re-validating what they affect; apart from the scene file's parser because
 // they come from another source and report against flags, not keys.
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -13,6 +14,10 @@ namespace sl {
 // Applies command-line overrides and re-validates what they affect. Bad values throw
 // InputError "command line: --frames: ...".
 void apply_overrides(SceneDesc& scene, const RenderOverrides& o);
+
+// --gltf-light-units: the units of every gltf shape that does not name its own "light_units".
+// Before resolve_imports, which reads the files.
+void apply_gltf_light_units(SceneDesc& scene, std::optional<LightUnits> units);
 
 // Parses an --emission value: "constant", "pulse" or "pulse:WIDTH_NS" (width_frames is left
 // for apply_overrides to check against the frame width). Throws "command line: --emission: ...".

@@ -265,6 +265,8 @@ private:
                                          : meters(s, "scale", 1.0);
                 if (s.has("rotate_deg"))
                     d.rotate_deg = to_vec3(s, "rotate_deg", s.triple("rotate_deg", Range::any()));
+                if (d.type == ShapeType::Gltf && s.has("light_units"))
+                    d.light_units = static_cast<LightUnits>(s.choice("light_units", {"photometric", "radiometric"}));
                 break;
         }
         // A mesh or glTF file without "material" keeps its own materials.

@@ -5,6 +5,8 @@
 #include <optional>
 #include <string>
 
+#include "config/scene_desc.h"  // LightUnits
+
 namespace sl {
 
 // Single: one convergence gives every frame (in K sections when memory asks for them);
@@ -16,7 +18,7 @@ inline const char* strategy_name(Strategy s) { return s == Strategy::Single ? "s
 enum class ToneCurve { Linear, Filmic, Log };
 
 struct RenderOverrides {
-    std::optional<int> frames, passes, width, height;
+    std::optional<int> frames, passes, width, height, max_depth;
     std::optional<int64_t> photons;
     std::optional<uint64_t> seed;
     std::optional<bool> camera_tof;
@@ -51,6 +53,9 @@ struct RunOptions {
     std::optional<double> time_limit;        // seconds of wall time for the whole run
     std::string preview_path;                // --preview FILE.png: contact sheet while rendering
     RenderOverrides overrides;
+    // --gltf-light-units: how glTF files read their lights' intensities, unless their scene entry
+    // says (its "light_units"); applied before the files are read (pipeline/render_command.cpp).
+    std::optional<LightUnits> gltf_light_units;
 };
 
 }  // namespace sl

@@ -55,6 +55,12 @@ struct TextureDesc {
 
 enum class ShapeType { Quad, Box, Sphere, Mesh, Gltf };
 
+// How a glTF file's KHR_lights_punctual intensities are read. Photometric (the glTF spec):
+// candela for point and spot lights, lux for directional ones, at 683 lm/W (W sr^-1 = cd / 683,
+// W m^-2 = lux / 683). Radiometric: the numbers are W sr^-1 and W m^-2 already.
+enum class LightUnits { Photometric, Radiometric };
+inline constexpr double kLumensPerWatt = 683;
+
 struct ShapeDesc {
     ShapeType type = ShapeType::Quad;
     int material = 0;  // index into SceneDesc::materials; -1: a mesh's own materials
@@ -75,9 +81,16 @@ struct ShapeDesc {
     // mesh, gltf: the file's triangles in scene space, filled by resolve_imports
     // (core/import/resolve_imports.h); shared, so that copying a SceneDesc stays cheap.
     std::shared_ptr<const MeshData> mesh;
+    // gltf: the units of its lights' intensities; empty: the command line's
+    // --gltf-light-units, else photometric (core/import/resolve_imports.cpp)
+    std::optional<LightUnits> light_units;
+    // mesh, gltf: the lights the file brought, lights[first_light, first_light + light_count)
+    // (filled by resolve_imports; for `info`'s per-file checks)
+    int first_light = 0, light_count = 0;
 };
 
 enum class LightType { Point, Quad, Spot, Laser, Sun };
+
 
 struct LightDesc {
     LightType type = LightType::Point;

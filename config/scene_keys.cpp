@@ -18,7 +18,8 @@ constexpr K kDielectric = {"type", "ior"};
 constexpr K kQuadShape = {"type", "corner", "edge1", "edge2", "material"};
 constexpr K kBox = {"type", "min", "max", "material"};
 constexpr K kSphere = {"type", "center", "radius", "material"};
-constexpr K kImported = {"type", "file", "translate", "scale", "rotate_deg", "material"};  // mesh, gltf
+constexpr K kMesh = {"type", "file", "translate", "scale", "rotate_deg", "material"};
+constexpr K kGltf = {"type", "file", "translate", "scale", "rotate_deg", "material", "light_units"};
 constexpr K kPoint = {"type", "position", "power"};
 constexpr K kQuadLight = {"type", "corner", "edge1", "edge2", "radiance"};
 constexpr K kSpot = {"type", "position", "direction", "cone_deg", "power"};
@@ -40,8 +41,8 @@ const SceneObjectKeys kObjects[] = {
     {"shapes", "quad", kQuadShape},
     {"shapes", "box", kBox},
     {"shapes", "sphere", kSphere},
-    {"shapes", "mesh", kImported},
-    {"shapes", "gltf", kImported},
+    {"shapes", "mesh", kMesh},
+    {"shapes", "gltf", kGltf},
     {"lights", "point", kPoint},
     {"lights", "quad", kQuadLight},
     {"lights", "spot", kSpot},

@@ -275,8 +275,9 @@ int RenderCommand::conclude(const PipelineStats& stats) {
 SceneDesc load_scene(const RunOptions& o) {
     if (!o.scene_path.empty()) refuse_cube_as_scene(o.scene_path);
     SceneDesc scene = o.scene_path.empty()          ? parse_default_scene()
-                      : is_model_file(o.scene_path) ? scene_for_model(o.scene_path)
+                      : is_model_file(o.scene_path) ? scene_for_model(o.scene_path, o.gltf_light_units)
                                                     : parse_scene_file(o.scene_path);
+    apply_gltf_light_units(scene, o.gltf_light_units);  // before the files are read
     resolve_imports(scene);  // meshes, materials, textures and lights of imported files
     apply_overrides(scene, o.overrides);
     return scene;

@@ -5,6 +5,9 @@
 #include <cstdio>
 
 #include "config/text_util.h"
+#include "core/import/mesh_data.h"
+#include "core/import/model_scene.h"
+#include "foundation/constants.h"
 #include "stages/render/render_context.h"
 
 namespace sl {
@@ -130,6 +133,76 @@ SceneFacts scene_facts(const RenderContext& ctx) {
     return f;
 }
 
+double light_watts(const LightDesc& l, Vec3 size) {
+    auto mean = [](Vec3 v) { return (double(v.x) + v.y + v.z) / 3; };
+    switch (l.type) {
+        case LightType::Quad: return mean(l.radiance) * kPiDouble * length(cross(l.edge1, l.edge2));
+        case LightType::Sun: {
+            const Vec3 d = normalize(l.direction);
+            const double area = std::abs(d.x) * size.y * size.z + std::abs(d.y) * size.x * size.z +
+                                std::abs(d.z) * size.x * size.y;
+            return mean(l.irradiance) * area;
+        }
+        default: return mean(l.power);
+    }
+}
+
+double emissive_watts(const SceneDesc& s, const ShapeDesc& shape) {
+    if (!shape.mesh) return 0;
+    const MeshData& m = *shape.mesh;
+    double w = 0;
+    for (size_t t = 0; t < m.tri_material.size(); ++t) {
+        const MaterialDesc& mat = s.materials[static_cast<size_t>(m.tri_material[t])];
+        if (!mat.emits()) continue;
+        const Vec3 a = m.positions[m.indices[3 * t]], b = m.positions[m.indices[3 * t + 1]],
+                   c = m.positions[m.indices[3 * t + 2]];
+        const double area = 0.5 * length(cross(b - a, c - a));
+        w += (double(mat.emission.x) + mat.emission.y + mat.emission.z) / 3 * kPiDouble * area *
+             (mat.double_sided ? 2 : 1);
+    }
+    return w;
+}
+
+namespace {
+
+// A glTF file whose lamps and emissive surfaces differ by more than kLightScaleSuspect: the
+// lamps were most likely written in the other unit (W/sr against cd: 683).
+void light_scale_warnings(const SceneDesc& s, Vec3 size, std::vector<std::string>& w) {
+    const bool model_alone = is_model_file(s.source);
+    for (const ShapeDesc& sh : s.shapes) {
+        if (sh.type != ShapeType::Gltf || sh.light_count == 0) continue;
+        double lamps = 0;
+        for (int i = sh.first_light; i < sh.first_light + sh.light_count; ++i)
+            lamps += light_watts(s.lights[static_cast<size_t>(i)], size);
+        const double surfaces = emissive_watts(s, sh);
+        if (!(lamps > 0) || !(surfaces > 0)) continue;
+        const double ratio = lamps / surfaces;
+        if (ratio <= kLightScaleSuspect && ratio >= 1 / kLightScaleSuspect) continue;
+        const bool radiometric = sh.light_units == LightUnits::Radiometric;
+        const bool lamps_weak = ratio < 1;
+        std::string advice;
+        const std::string key = model_alone ? "render it with --gltf-light-units " : "give its gltf shape \"light_units\": ";
+        if (lamps_weak && !radiometric)
+            advice = "if its lights are in W/sr and W/m^2 (Blender's \"Unitless\" lighting mode), " + key +
+                     (model_alone ? "radiometric" : "\"radiometric\"");
+        else if (!lamps_weak && radiometric)
+            advice = "if its lights are in candela and lux (Blender's \"Standard\" lighting mode), " + key +
+                     (model_alone ? "photometric" : "\"photometric\"");
+        else
+            advice = std::string("check the file's light intensities and emission strengths (its lights are read as ") +
+                     (radiometric ? "W/sr and W/m^2" : "candela and lux") + ")";
+        char buf[1024];
+        std::snprintf(buf, sizeof buf,
+                      "warning: %s: its lamps emit %.4g W and its emissive surfaces %.4g W, %.0f times %s: one of them "
+                      "is almost certainly in the other unit; %s",
+                      sh.file.c_str(), lamps, surfaces, lamps_weak ? 1 / ratio : ratio, lamps_weak ? "less" : "more",
+                      advice.c_str());
+        w.push_back(buf);
+    }
+}
+
+}  // namespace
+
 std::vector<std::string> scene_warnings(const RenderContext& ctx, const SceneFacts& f) {
     std::vector<std::string> w;
     const SceneDesc& s = ctx.scene;
@@ -158,6 +231,7 @@ std::vector<std::string> scene_warnings(const RenderContext& ctx, const SceneFac
                       s.source.c_str(), format_number(s.time.end_ns).c_str(), *f.first_arrival_ns);
         w.push_back(buf);
     }
+    light_scale_warnings(s, f.size, w);
     return w;
 }
 

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "config/scene_desc.h"
 #include "foundation/vec3.h"
 
 namespace sl {
@@ -30,6 +31,18 @@ struct SceneFacts {
 };
 
 SceneFacts scene_facts(const RenderContext& ctx);
+
+// Watts, the mean of the RGB channels. A light's emitted power: point, spot, laser their power,
+// a quad light pi L A (one side). A sun has none of its own: its power through the cross-section
+// of the box `size` (meters) facing it.
+double light_watts(const LightDesc& l, Vec3 size);
+// The emissive triangles of an imported file (a mesh or gltf shape): pi L A per emitting face
+// (both faces of a double-sided material), emission textures not counted.
+double emissive_watts(const SceneDesc& s, const ShapeDesc& shape);
+
+// A file whose lamps and emissive surfaces differ in power by more than this factor (either
+// way) has one of them in the other unit, almost certainly (683 between cd and W/sr).
+inline constexpr double kLightScaleSuspect = 200;
 
 // One line per problem, each beginning "warning: ".
 std::vector<std::string> scene_warnings(const RenderContext& ctx, const SceneFacts& facts);

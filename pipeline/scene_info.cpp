@@ -19,6 +19,51 @@ std::string fixed(double v, int decimals) {
     return buf;
 }
 
+const char* light_type_name(LightType t) {
+    switch (t) {
+        case LightType::Point: return "point";
+        case LightType::Quad: return "quad";
+        case LightType::Spot: return "spot";
+        case LightType::Laser: return "laser";
+        case LightType::Sun: return "sun";
+    }
+    return "light";
+}
+
+std::string watts(double w) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.4g W", w);
+    return buf;
+}
+
+// Every light's power in watts (the mean of its RGB channels), the file it came from, and the
+// emissive surfaces of every imported file.
+void print_light_powers(std::ostream& out, const SceneDesc& s, Vec3 size) {
+    std::vector<const ShapeDesc*> from(s.lights.size(), nullptr);
+    for (const ShapeDesc& sh : s.shapes)
+        for (int i = sh.first_light; i < sh.first_light + sh.light_count; ++i) from[static_cast<size_t>(i)] = &sh;
+    const char* label = "power:      ";
+    for (size_t i = 0; i < s.lights.size(); ++i) {
+        const LightDesc& l = s.lights[i];
+        out << label << "lights[" << i << "] " << light_type_name(l.type) << ": ";
+        label = "            ";
+        if (l.type == LightType::Sun) {
+            char buf[64];
+            std::snprintf(buf, sizeof buf, "%.4g W/m^2", (double(l.irradiance.x) + l.irradiance.y + l.irradiance.z) / 3);
+            out << buf << ", " << watts(light_watts(l, size)) << " through the scene's cross-section";
+        } else {
+            out << watts(light_watts(l, size));
+        }
+        if (from[i]) out << " (from " << from[i]->file << ")";
+        out << "\n";
+    }
+    for (const ShapeDesc& sh : s.shapes)
+        if (const double w = emissive_watts(s, sh); w > 0) {
+            out << label << "emissive surfaces of " << sh.file << ": " << watts(w) << "\n";
+            label = "            ";
+        }
+}
+
 }  // namespace
 
 void print_scene_info(std::ostream& out, std::ostream& err, const SceneDesc& s, const RunOptions& options) {
@@ -53,6 +98,7 @@ void print_scene_info(std::ostream& out, std::ostream& err, const SceneDesc& s, 
         << format_bytes(imported_mesh_bytes(s)) << " of vertex data, about " << format_bytes(imported_bvh_bytes(s))
         << " more in the BVH); " << s.textures.size() << " texture" << (s.textures.size() == 1 ? "" : "s") << ", "
         << format_bytes(texture_bytes(s)) << "\n";
+    print_light_powers(out, s, f.size);
     for (const std::string& w : scene_warnings(ctx, f)) err << w << "\n";
 
     // Memory: the time buckets (what K divides) and the fixed part (what it does not); a

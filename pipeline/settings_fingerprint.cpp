@@ -19,11 +19,13 @@ constexpr uint64_t kMaxMeshBytes = uint64_t(1) << 30;  // as the mesh loader all
 
 // Fields that do not decide a pixel, as paths from the scene ("[]": any element of a list):
 // names; file paths and decoded data, whose files' bytes are hashed instead; whether imports
-// were read yet (bookkeeping); fps, which only paces the video. Every other field of SceneDesc
+// were read yet (bookkeeping); fps, which only paces the video; how an import's lights were
+// read and where they went (the lights themselves are in it). Every other field of SceneDesc
 // is in the fingerprint (config/scene_fields.h names them all).
 constexpr std::string_view kNotPixels[] = {
     "source",        "input_files",   "imports_resolved", "materials[].name", "shapes[].file",
-    "shapes[].mesh", "textures[].file", "textures[].image", "time.fps",
+    "shapes[].mesh", "textures[].file", "textures[].image", "time.fps", "shapes[].light_units",
+    "shapes[].first_light", "shapes[].light_count",
 };
 
 bool decides_pixels(const std::string& path) {

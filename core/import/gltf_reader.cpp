@@ -160,7 +160,8 @@ int64_t too_deep_at(std::FILE* f, uint64_t length) {
 
 class GltfReader {
 public:
-    GltfReader(const std::string& path, bool use_materials) : path_(path), use_materials_(use_materials) {}
+    GltfReader(const std::string& path, bool use_materials, LightUnits units)
+        : path_(path), use_materials_(use_materials), units_(units) {}
 
     ImportedFile read() {
         load();
@@ -655,7 +656,7 @@ private:
         p.position = apply_point(m, Vec3(0));
         p.direction = apply_vector(m, Vec3(0, 0, -1));
         std::string warning;
-        if (std::optional<LightDesc> d = map_punctual_light(p, warning)) {
+        if (std::optional<LightDesc> d = map_punctual_light(p, units_, warning)) {
             // The scene file's bound on a light's power (W) and a sun's irradiance (W/m^2).
             const Vec3 e = d->type == LightType::Sun ? d->irradiance : d->power;
             if (!is_finite(e) || max_component(e) > static_cast<float>(limits::kMaxEmission))
@@ -669,6 +670,7 @@ private:
 
     std::string path_;
     bool use_materials_;
+    LightUnits units_;
     tinygltf::Model model_;
     ImportedFile out_;
     std::vector<bool> material_used_;
@@ -678,6 +680,8 @@ private:
 
 }  // namespace
 
-ImportedFile read_gltf(const std::string& path, bool read_materials) { return GltfReader(path, read_materials).read(); }
+ImportedFile read_gltf(const std::string& path, bool read_materials, LightUnits units) {
+    return GltfReader(path, read_materials, units).read();
+}
 
 }  // namespace sl

@@ -29,7 +29,8 @@ struct ImportedFile {
 
 // Both throw InputError naming the file (and line or element) for anything malformed. Without
 // read_materials every triangle gets one default material (the scene names its own).
+// `units`: how the glTF's KHR_lights_punctual intensities are read (config/scene_desc.h).
 ImportedFile read_obj_mtl(const std::string& path, bool read_materials);
-ImportedFile read_gltf(const std::string& path, bool read_materials);
+ImportedFile read_gltf(const std::string& path, bool read_materials, LightUnits units = LightUnits::Photometric);
 
 }  // namespace sl

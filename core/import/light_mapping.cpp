@@ -13,23 +13,26 @@ std::string label(const PunctualLight& l) {
 }
 }  // namespace
 
-// A directional light is a sun with no angular size: its intensity is the irradiance (W m^-2)
-// on a plane facing it, and its wavefront enters the scene's bounds at t = 0.
-std::optional<LightDesc> map_directional_light(const PunctualLight& l, std::string& warning) {
+double watts_per_unit(LightUnits units) { return units == LightUnits::Photometric ? 1 / kLumensPerWatt : 1.0; }
+
+// A directional light is a sun with no angular size: its intensity is the illuminance (lux) or
+// irradiance (W m^-2) on a plane facing it, and its wavefront enters the scene's bounds at t = 0.
+std::optional<LightDesc> map_directional_light(const PunctualLight& l, LightUnits units, std::string& warning) {
     if (!(l.intensity >= 0) || !std::isfinite(l.intensity) || !is_finite(l.color) || !is_finite(l.direction) ||
         !(length(l.direction) > 0)) {
         warning = label(l) + ": intensity, colour or direction not finite (left out)";
         return std::nullopt;
     }
-    return make_sun_light(l.direction, 0.0f, vmax(l.color, Vec3(0)) * static_cast<float>(l.intensity));
+    return make_sun_light(l.direction, 0.0f,
+                          vmax(l.color, Vec3(0)) * static_cast<float>(l.intensity * watts_per_unit(units)));
 }
 
-std::optional<LightDesc> map_punctual_light(const PunctualLight& l, std::string& warning) {
+std::optional<LightDesc> map_punctual_light(const PunctualLight& l, LightUnits units, std::string& warning) {
     warning.clear();
-    if (l.type == "directional") return map_directional_light(l, warning);
+    if (l.type == "directional") return map_directional_light(l, units, warning);
     if (!(l.intensity >= 0) || !std::isfinite(l.intensity) || !is_finite(l.color) || !is_finite(l.position))
         { warning = label(l) + ": intensity, colour or position not finite (left out)"; return std::nullopt; }
-    const Vec3 intensity = vmax(l.color, Vec3(0)) * static_cast<float>(l.intensity);  // W/sr
+    const Vec3 intensity = vmax(l.color, Vec3(0)) * static_cast<float>(l.intensity * watts_per_unit(units));  // W/sr
     LightDesc d;
     d.position = l.position;
     if (l.type == "point") {

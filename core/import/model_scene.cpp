@@ -25,7 +25,7 @@ bool is_model_file(const std::string& path) {
     return e == ".glb" || e == ".gltf" || e == ".obj";
 }
 
-SceneDesc scene_for_model(const std::string& path) {
+SceneDesc scene_for_model(const std::string& path, std::optional<LightUnits> light_units) {
     SceneDesc scene;
     scene.source = path;
     ShapeDesc s;
@@ -33,6 +33,7 @@ SceneDesc scene_for_model(const std::string& path) {
     std::error_code ec;
     s.file = fs::absolute(path, ec).lexically_normal().string();
     s.material = -1;
+    if (s.type == ShapeType::Gltf) s.light_units = light_units;
     scene.shapes.push_back(s);
     resolve_imports(scene);
 

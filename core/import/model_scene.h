@@ -5,6 +5,7 @@
 // materials and KHR_lights_punctual lights). Time: 0 to the time light needs to cross the
 // scene's bounding-box diagonal three times. Everything else: the scene file's defaults, and
 // the command line's flags override as usual.
+#include <optional>
 #include <string>
 
 #include "config/scene_desc.h"
@@ -14,7 +15,8 @@ namespace sl {
 // True for a path whose extension is .glb, .gltf or .obj (any case).
 bool is_model_file(const std::string& path);
 
-// Throws InputError naming the file when it cannot be read or has no light.
-SceneDesc scene_for_model(const std::string& path);
+// Throws InputError naming the file when it cannot be read or has no light. `light_units`: how a
+// glTF file's lights are read (--gltf-light-units; empty: photometric).
+SceneDesc scene_for_model(const std::string& path, std::optional<LightUnits> light_units = {});
 
 }  // namespace sl

@@ -32,7 +32,8 @@ struct CameraNote { std::optional<CameraDesc> camera; };
 // Errors name the scene file first when the mesh came through one.
 ImportedFile read_file(const ShapeDesc& s, const std::string& scene_source) {
     try {
-        if (s.type == ShapeType::Gltf) return read_gltf(s.file, s.material < 0);
+        if (s.type == ShapeType::Gltf)
+            return read_gltf(s.file, s.material < 0, s.light_units.value_or(LightUnits::Photometric));
         return read_obj_mtl(s.file, s.material < 0);
     } catch (const InputError& e) {
         std::error_code ec;
@@ -93,6 +94,8 @@ void resolve_imports(SceneDesc& scene) {
         for (Vec3& n : mesh->normals) n = place.vector(n);
         for (int32_t& m : mesh->tri_material) m = material_map[static_cast<size_t>(m)];
         s.mesh = std::move(mesh);
+        s.first_light = static_cast<int>(scene.lights.size());
+        s.light_count = static_cast<int>(f.lights.size());
         for (LightDesc l : f.lights) {
             l.position = place.point(l.position);
             l.direction = normalize(place.vector(l.direction));

@@ -81,6 +81,8 @@ TEST(CommandLine, EveryOptionInBothForms) {
         opt("--threads", "2");
         opt("--stats", "stats.json");
         opt("--exposure", "0.5");
+        opt("--max-depth", "12");
+        opt("--gltf-light-units", "radiometric");
         words.push_back("--camera-tof");
         words.push_back("--no-progress");
         words.push_back("scene.json");
@@ -108,6 +110,8 @@ TEST(CommandLine, EveryOptionInBothForms) {
         EXPECT_EQ(r.threads, 2);
         EXPECT_EQ(r.stats_path, "stats.json");
         EXPECT_EQ(r.exposure, 0.5);
+        EXPECT_EQ(r.overrides.max_depth, 12);
+        EXPECT_EQ(r.gltf_light_units, LightUnits::Radiometric);
         EXPECT_FALSE(r.progress);
     }
 }
@@ -197,6 +201,11 @@ TEST(CommandLine, Errors) {
          "command line: --exposure: must be a finite number > 0, got '0'"},
         {{"render", "--exposure", "nan"}, "command line: --exposure: must be a finite number > 0"},
         {{"render", "--camera-tof=yes"}, "command line: --camera-tof does not take a value"},
+        {{"render", "--max-depth", "0"}, "command line: --max-depth: must be an integer in 1..1000, got '0'"},
+        {{"render", "--max-depth", "1001"}, "command line: --max-depth: must be an integer in 1..1000, got '1001'"},
+        {{"render", "--max-depth", "deep"}, "command line: --max-depth: must be an integer in 1..1000, got 'deep'"},
+        {{"render", "--gltf-light-units", "lumens"},
+         "command line: --gltf-light-units: must be photometric or radiometric, got 'lumens'"},
         {{"render", "--no-progress=1"}, "command line: --no-progress does not take a value"},
     };
     for (const auto& [args, message] : cases) {
@@ -214,7 +223,8 @@ TEST(CommandLine, HelpListsEveryContractFlag) {
           "--width",          "--height",       "--seed",         "--sections",    "--max-memory",
           "--emission",       "--camera-tof",   "--strategy",     "--threads",     "--stats",
           "--exposure",       "--no-progress",  "frame-by-frame", "pulse:WIDTH_NS", "--checkpoint DIR",
-          "--checkpoint-every", "--time-limit", "--preview",    "--resume"})
+          "--checkpoint-every", "--time-limit", "--preview",    "--resume",      "--max-depth N",
+          "--gltf-light-units U"})
         EXPECT_NE(help.find(flag), std::string::npos) << flag;
     // One line per option: no line longer than a wide terminal.
     size_t start = 0;

@@ -118,3 +118,19 @@ TEST(Overrides, BadValuesNameTheFlag) {
         EXPECT_EQ(m.rfind(c.message, 0), 0u) << m;
     }
 }
+
+TEST(Overrides, MaxDepthReplacesTheSceneAndIsChecked) {
+    SceneDesc s = pulse_scene();
+    EXPECT_EQ(s.render.max_depth, 8);
+    RenderOverrides o;
+    o.max_depth = 3;
+    apply_overrides(s, o);
+    EXPECT_EQ(s.render.max_depth, 3);
+    o.max_depth = 1000;
+    apply_overrides(s, o);
+    EXPECT_EQ(s.render.max_depth, 1000);
+    o.max_depth = 0;
+    EXPECT_EQ(error_of(pulse_scene(), o), "command line: --max-depth: must be an integer in 1..1000, got 0");
+    o.max_depth = 1001;
+    EXPECT_EQ(error_of(pulse_scene(), o), "command line: --max-depth: must be an integer in 1..1000, got 1001");
+}

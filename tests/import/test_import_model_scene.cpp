@@ -1,11 +1,14 @@
 // `slowlight render model.glb` without a scene file: the file's camera and lights (point and
-// spot intensity read as W/sr), or a camera that frames the scene, and a time window for light
+// spot intensity in candela, cd / 683 = W/sr; or W/sr as written when radiometric), or a camera that frames the scene, and a time window for light
 // to cross it three times.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
+#include "config/parse_scene.h"
 #include "core/camera.h"
+#include "core/import/resolve_imports.h"
+#include "foundation/errors.h"
 #include "core/import/model_scene.h"
 #include "tests/common/temp_dir.h"
 #include "tests/import/model_writers.h"
@@ -68,10 +71,10 @@ double centre_radiance(const std::string& file) {
     return sum / 4;
 }
 
-TEST(ImportModelScene, PointAndSpotIntensityAreWattsPerSteradian) {
+TEST(ImportModelScene, PointAndSpotIntensityAreCandelaAt683LumensPerWatt) {
     TempDir dir;
-    const double I = 20, h = 2;
-    write_floor_model(dir.file("point.glb"), "point", I);
+    const double I = 20, h = 2;  // W/sr
+    write_floor_model(dir.file("point.glb"), "point", I * 683);
     SceneDesc s = scene_for_model(dir.file("point.glb"));
     ASSERT_EQ(s.lights.size(), 1u);
     EXPECT_NEAR(s.lights[0].power.x, 4 * M_PI * I, 1e-3);
@@ -90,12 +93,82 @@ TEST(ImportModelScene, PointAndSpotIntensityAreWattsPerSteradian) {
             expected += 0.5 / M_PI * I * h / (r2 * std::sqrt(r2)) / (n * n);
         }
     EXPECT_NEAR(centre_radiance(dir.file("point.glb")), expected, 0.01 * expected);
-    write_floor_model(dir.file("spot.glb"), "spot", I);
+    write_floor_model(dir.file("spot.glb"), "spot", I * 683);
     SceneDesc sp = scene_for_model(dir.file("spot.glb"));
     ASSERT_EQ(sp.lights.size(), 1u);
     EXPECT_EQ(sp.lights[0].type, LightType::Spot);
     EXPECT_NEAR(sp.lights[0].cone_deg, 0.4 * 180 / M_PI, 1e-3);  // half-way between the cones
     EXPECT_NEAR(centre_radiance(dir.file("spot.glb")), expected, 0.01 * expected);
+}
+
+// Blender's default ("Standard") lighting mode writes a 100 W point light as 100 / (4 pi) * 683
+// = 5435.2 cd: it must come back as (nearly) 100 W, and exactly 4 pi * 5435.2 / 683.
+TEST(ImportModelScene, A5435CandelaPointIsA100WattPoint) {
+    TempDir dir;
+    write_floor_model(dir.file("point.glb"), "point", 5435.2);
+    SceneDesc s = scene_for_model(dir.file("point.glb"));
+    ASSERT_EQ(s.lights.size(), 1u);
+    EXPECT_EQ(s.lights[0].type, LightType::Point);
+    EXPECT_FLOAT_EQ(s.lights[0].power.x, static_cast<float>(4 * M_PI * 5435.2 / 683));
+    EXPECT_NEAR(s.lights[0].power.y, 100, 0.01);
+    // Explicitly photometric: the same.
+    EXPECT_FLOAT_EQ(scene_for_model(dir.file("point.glb"), LightUnits::Photometric).lights[0].power.z,
+                    static_cast<float>(4 * M_PI * 5435.2 / 683));
+}
+
+// Files in radiometric units (Blender's "Unitless" mode): the number is W/sr, as before.
+TEST(ImportModelScene, RadiometricUnitsReadTheIntensityAsWattsPerSteradian) {
+    TempDir dir;
+    const double I = 20;
+    write_floor_model(dir.file("point.glb"), "point", I);
+    SceneDesc s = scene_for_model(dir.file("point.glb"), LightUnits::Radiometric);
+    ASSERT_EQ(s.lights.size(), 1u);
+    EXPECT_FLOAT_EQ(s.lights[0].power.x, static_cast<float>(4 * M_PI * I));
+    write_floor_model(dir.file("spot.glb"), "spot", I);
+    SceneDesc sp = scene_for_model(dir.file("spot.glb"), LightUnits::Radiometric);
+    ASSERT_EQ(sp.lights.size(), 1u);
+    const double cone = 0.4;  // half-way between the file's cones: a hard cone of that half-angle
+    EXPECT_NEAR(sp.lights[0].power.x, I * 2 * M_PI * (1 - std::cos(cone)), 1e-4);
+    SceneDesc sp_cd = scene_for_model(dir.file("spot.glb"));
+    EXPECT_NEAR(sp_cd.lights[0].power.x, I / 683 * 2 * M_PI * (1 - std::cos(cone)), 1e-7);
+}
+
+// In a scene file: the gltf shape's "light_units", and --gltf-light-units as the default for the
+// shapes that do not say.
+TEST(ImportModelScene, SceneFileLightUnitsKeyAndCommandLineDefault) {
+    TempDir dir;
+    write_floor_model(dir.file("point.glb"), "point", 20);
+    const std::string text = R"({"camera": {"position": [0, 3, 0], "look_at": [0, 0, 1]}, "shapes": [
+        {"type": "gltf", "file": "point.glb"},
+        {"type": "gltf", "file": "point.glb", "light_units": "radiometric"},
+        {"type": "gltf", "file": "point.glb", "light_units": "photometric"}]})";
+    auto powers = [&](std::optional<LightUnits> flag) {
+        SceneDesc s = parse_scene_text(text, "scene.json", dir.path().string());
+        apply_gltf_light_units(s, flag);
+        resolve_imports(s);
+        std::vector<float> p;
+        for (const LightDesc& l : s.lights) p.push_back(l.power.x);
+        return p;
+    };
+    const float cd = static_cast<float>(4 * M_PI * 20 / 683), wsr = static_cast<float>(4 * M_PI * 20);
+    const std::vector<float> no_flag = powers(std::nullopt), radiometric = powers(LightUnits::Radiometric);
+    ASSERT_EQ(no_flag.size(), 3u);
+    ASSERT_EQ(radiometric.size(), 3u);
+    EXPECT_FLOAT_EQ(no_flag[0], cd);
+    EXPECT_FLOAT_EQ(no_flag[1], wsr);
+    EXPECT_FLOAT_EQ(no_flag[2], cd);
+    EXPECT_FLOAT_EQ(radiometric[0], wsr);  // the flag: the default of the shape without the key
+    EXPECT_FLOAT_EQ(radiometric[1], wsr);
+    EXPECT_FLOAT_EQ(radiometric[2], cd);   // the shape's own key wins
+    // Anything else is refused, naming the key; a mesh (OBJ) has no such key.
+    try {
+        parse_scene_text(R"({"camera": {"position": [0, 3, 0], "look_at": [0, 0, 1]},
+                             "shapes": [{"type": "gltf", "file": "point.glb", "light_units": "lumens"}]})",
+                         "scene.json", dir.path().string());
+        ADD_FAILURE() << "accepted light_units lumens";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("light_units"), std::string::npos) << e.what();
+    }
 }
 
 TEST(ImportModelScene, WithoutCameraTheSceneIsFramedAndTheTimeCoversThreeCrossings) {

@@ -1,5 +1,5 @@
-// Emission textures, the texture plugin loaded only when a texture is used, and glTF lights
-// that are not imported (directional) being named in a warning.
+// Emission textures, the texture plugin loaded only when a texture is used, and glTF
+// directional lights becoming suns (lux / 683 = W/m^2, or W/m^2 as written when radiometric).
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -102,20 +102,33 @@ TEST(ImportTextures, PluginLoadsOnlyForTexturedScenes) {
     EXPECT_EQ(texture_bytes(s), 2u * 2 * 3 * sizeof(float));
 }
 
-TEST(ImportLights, DirectionalLightBecomesASunOfItsIrradiance) {
+// The irradiance of the one sun of a model, read in the given units.
+float sun_irradiance(const std::string& file, std::optional<LightUnits> units) {
+    SceneDesc s = scene_for_model(file, units);
+    float e = -1;
+    for (const LightDesc& l : s.lights)
+        if (l.type == LightType::Sun) e = l.irradiance.x;
+    return e;
+}
+
+TEST(ImportLights, DirectionalLightBecomesASunOfItsIlluminanceOver683) {
     TempDir dir;
     ModelMesh m;
     m.quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 0);
-    nlohmann::json lights = {{"lights", {{{"type", "directional"}, {"name", "sun"}, {"intensity", 3.0}}}},
+    // 2049 lux: what Blender's default ("Standard") lighting mode writes for a 3 W/m^2 sun.
+    nlohmann::json lights = {{"lights", {{{"type", "directional"}, {"name", "sun"}, {"intensity", 2049.0}}}},
                              {"nodes", {{{"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}}}}};
     write_gltf(dir.file("sun.glb"), m, {{"lamp", Vec3(0), Vec3(1)}}, true, lights);
+    EXPECT_FLOAT_EQ(sun_irradiance(dir.file("sun.glb"), LightUnits::Photometric), 3.0f);
+    // Read as W/m^2 (Blender's "Unitless" mode), the number is the irradiance.
+    EXPECT_FLOAT_EQ(sun_irradiance(dir.file("sun.glb"), LightUnits::Radiometric), 2049.0f);
     SceneDesc s = scene_for_model(dir.file("sun.glb"));
     resolve_imports(s);
     int suns = 0;
     for (const LightDesc& l : s.lights) {
         if (l.type != LightType::Sun) continue;
         ++suns;
-        EXPECT_FLOAT_EQ(l.irradiance.x, 3.0f);  // glTF's directional intensity is W/m^2 here
+        EXPECT_FLOAT_EQ(l.irradiance.x, 3.0f);  // photometric by default: 2049 lux / 683
         EXPECT_NEAR(l.direction.z, -1.0f, 1e-6f);  // a node without rotation shines along -Z
         EXPECT_EQ(l.angle_deg, 0.0f);
     }

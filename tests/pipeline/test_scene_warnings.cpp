@@ -1,15 +1,18 @@
 // Mistakes that once ended in a silent black video with exit status 0 now get a `warning:` line
 // (and still exit 0): a time window that closes before any reflected light arrives, a light
 // outside the closed room the camera is in, a scene whose size says its coordinates are not
-// meters, and a render where no light reaches the camera. Each fires on its case and on none of
-// the samples. `info` states the numbers behind them.
+// meters, a render where no light reaches the camera, and a glTF file whose lamps and emissive
+// surfaces differ so much in power that one of them is in the other unit. Each fires on its case
+// and on none of the samples. `info` states the numbers behind them (every light's watts too).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <regex>
 
+#include "tests/import/model_writers.h"
 #include "tests/pipeline/pipeline_helpers.h"
 
+using namespace sl;
 using namespace sl::test;
 
 namespace {
@@ -171,4 +174,93 @@ TEST(SceneInfo, StatesSizeCrossingArrivalsAndTriangles) {
     // The farthest visible point lit straight from the lamp (a floor corner at the front) is
     // under sqrt(1.25^2 + 2^2 + 1.2^2) = 2.65 m away: 8.9 ns.
     EXPECT_LE(last, 2.65 / 0.299792458 * 1.01);
+}
+
+namespace {
+
+// A 1 m x 1 m emissive quad (radiance 1 W sr^-1 m^-2 from its front: pi W) and a point light
+// 1 m in front of it of `intensity` (cd, or W/sr when the file is radiometric), and a sun of
+// `sun_lux` (none when 0).
+std::string write_lamp_and_panel(const ScratchDir& dir, const std::string& name, double intensity, double sun_lux = 0) {
+    ModelMesh m;
+    m.quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 0);
+    nlohmann::json lights = nlohmann::json::array({{{"type", "point"}, {"intensity", intensity}}});
+    nlohmann::json nodes = nlohmann::json::array(
+        {{{"translation", {0.5, 0.5, 1}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}}});
+    if (sun_lux > 0) {
+        lights.push_back({{"type", "directional"}, {"intensity", sun_lux}});
+        nodes.push_back({{"extensions", {{"KHR_lights_punctual", {{"light", 1}}}}}});
+    }
+    write_gltf(dir.file(name), m, {{"panel", Vec3(0.5f), Vec3(1)}}, true, {{"lights", lights}, {"nodes", nodes}});
+    return dir.file(name);
+}
+
+std::vector<std::string> scale_warnings(const std::vector<std::string>& w) {
+    std::vector<std::string> r;
+    for (const std::string& line : w)
+        if (line.find("almost certainly in the other unit") != std::string::npos) r.push_back(line);
+    return r;
+}
+
+std::vector<std::string> info_warnings_with(const ScratchDir& dir, std::vector<std::string> args, std::string* text = nullptr) {
+    const std::string out = dir.file("info.txt");
+    args.insert(args.begin(), "info");
+    ProgramResult r = run_program(args, out);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    if (text) *text = read_text(out);
+    return warnings(r.err);
+}
+
+}  // namespace
+
+TEST(SceneInfo, PrintsEveryLightsPowerInWatts) {
+    ScratchDir dir;
+    std::string text;
+    info_warnings(dir, sample("cornell_box.json"), &text);
+    // The lamp quad: pi x the mean of its radiance x its area.
+    const nlohmann::json lamp = box()["lights"][0];
+    auto v = [](const nlohmann::json& a) { return Vec3(a[0].get<float>(), a[1].get<float>(), a[2].get<float>()); };
+    const Vec3 L = v(lamp["radiance"]);
+    const double watts = M_PI * (double(L.x) + L.y + L.z) / 3 * length(cross(v(lamp["edge1"]), v(lamp["edge2"])));
+    char expected[64];
+    std::snprintf(expected, sizeof expected, "lights[0] quad: %.4g W", watts);
+    EXPECT_NE(text.find(expected), std::string::npos) << expected << "\n" << text;
+
+    // A glTF's point light of 5435.2 cd is 100 W; its 2049 lux sun 3 W/m^2; its emissive panel pi W.
+    const std::string model = write_lamp_and_panel(dir, "lamp.glb", 5435.2, 2049);
+    info_warnings_with(dir, {model}, &text);
+    EXPECT_NE(text.find("lights[0] point: 100 W (from "), std::string::npos) << text;
+    EXPECT_NE(text.find("lights[1] sun: 3 W/m^2, "), std::string::npos) << text;
+    EXPECT_NE(text.find("emissive surfaces of " + model + ": 3.142 W"), std::string::npos) << text;
+    // Read as radiometric, the same numbers are 683 times more.
+    info_warnings_with(dir, {model, "--gltf-light-units", "radiometric"}, &text);
+    EXPECT_NE(text.find("lights[1] sun: 2049 W/m^2, "), std::string::npos) << text;
+}
+
+TEST(SceneWarnings, LampsAndEmissiveSurfacesInDifferentUnits) {
+    ScratchDir dir;
+    // Consistent: a pi W panel and a point light of pi W (0.25 W/sr = 170.75 cd).
+    const std::string good = write_lamp_and_panel(dir, "good.glb", 0.25 * 683);
+    EXPECT_TRUE(scale_warnings(info_warnings_with(dir, {good})).empty());
+    // Written in W/sr (Blender's "Unitless" mode) and read as candela: 683 times too weak.
+    const std::string unitless = write_lamp_and_panel(dir, "unitless.glb", 0.25);
+    std::vector<std::string> w = scale_warnings(info_warnings_with(dir, {unitless}));
+    ASSERT_EQ(w.size(), 1u);
+    EXPECT_NE(w[0].find(unitless), std::string::npos) << w[0];
+    EXPECT_NE(w[0].find("683 times less"), std::string::npos) << w[0];
+    EXPECT_NE(w[0].find("--gltf-light-units radiometric"), std::string::npos) << w[0];
+    EXPECT_TRUE(scale_warnings(info_warnings_with(dir, {unitless, "--gltf-light-units", "radiometric"})).empty());
+    // The consistent file read as radiometric: 683 times too strong.
+    w = scale_warnings(info_warnings_with(dir, {good, "--gltf-light-units", "radiometric"}));
+    ASSERT_EQ(w.size(), 1u);
+    EXPECT_NE(w[0].find("683 times more"), std::string::npos) << w[0];
+    EXPECT_NE(w[0].find("--gltf-light-units photometric"), std::string::npos) << w[0];
+    // In a scene file the advice is the gltf shape's key.
+    nlohmann::json scene = box();
+    scene["shapes"].push_back({{"type", "gltf"}, {"file", unitless}});
+    w = scale_warnings(info_warnings(dir, write_scene(dir, "with_model.json", scene)));
+    ASSERT_EQ(w.size(), 1u);
+    EXPECT_NE(w[0].find("\"light_units\": \"radiometric\""), std::string::npos) << w[0];
+    scene["shapes"].back()["light_units"] = "radiometric";
+    EXPECT_TRUE(scale_warnings(info_warnings(dir, write_scene(dir, "with_model.json", scene))).empty());
 }

@@ -101,11 +101,13 @@ TEST(SettingsFingerprint, EveryFieldThatDecidesPixelsChangesIt) {
     add(unchanged_fields("time.", [](SceneDesc& s) -> TimeDesc& { return s.time; }, changed));
     add(unchanged_fields("emission.", [](SceneDesc& s) -> EmissionDesc& { return s.emission; }, changed));
     add(unchanged_fields("render.", [](SceneDesc& s) -> RenderDesc& { return s.render; }, changed));
-    // The only fields that decide no pixel: names, paths (the files' bytes are hashed), fps.
-    const std::set<std::string> expected = {"source",     "imports_resolved", "materials[].name",
-                                            "shapes[].file", "textures[].file", "time.fps"};
+    // The only fields that decide no pixel: names, paths (the files' bytes are hashed), fps,
+    // where an import's lights went (the lights are in it).
+    const std::set<std::string> expected = {"source",        "imports_resolved", "materials[].name",
+                                            "shapes[].file", "textures[].file",  "time.fps",
+                                            "shapes[].first_light", "shapes[].light_count"};
     EXPECT_EQ(same, expected);
-    EXPECT_EQ(changed, 69);  // every leaf of every struct was tried
+    EXPECT_EQ(changed, 71);  // every leaf of every struct was tried
 }
 
 TEST(SettingsFingerprint, SectionsAndStrategyChangeIt) {
