@@ -135,7 +135,10 @@ struct EmissionDesc {
 struct RenderDesc {
     int passes = 64;
     int64_t photons_per_pass = 200000;
-    int max_depth = 8;
+    // Vertices a photon or camera path may take: a safety cap only. Russian roulette ends paths
+    // (survival by albedo or reflectance from the third vertex on), so closed rooms converge:
+    // a white room of albedo 0.9 loses 0.9^1000 of its light to it (docs/design.md).
+    int max_depth = 1000;
     float radius = 0;  // initial gather radius in meters; 0 means automatic
     float alpha = 0.7f;
     bool camera_tof = false;

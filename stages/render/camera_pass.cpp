@@ -95,9 +95,17 @@ struct PixelTracer {
                 return;
             }
             if (++specular >= settings.max_depth) return;
-            beta *= follow_specular(m, hit, o, d, inside, inside_ior, rng);
+            const Vec3 w = follow_specular(m, hit, o, d, inside, inside_ior, rng);
+            beta *= w;
             tnear = 0;
             if (is_black(beta)) return;
+            // Russian roulette from the third specular bounce on, on the event's weight (clear
+            // glass and perfect mirrors weigh 1 and are never cut: max_depth is their cap).
+            const float q = specular >= 3 ? std::min(1.0f, max_component(w)) : 1.0f;
+            if (q < 1) {
+                if (rng.uniform() >= q) return;
+                beta = beta * (1.0f / q);
+            }
         }
     }
 

@@ -93,7 +93,15 @@ struct PhotonPath {
                 if (dot(d, nf) <= 0) return;
                 o = hit.position + nf * ray_epsilon(hit.position, hit.t);
             } else {
-                flux *= follow_specular(m, hit, o, d, inside, inside_ior, rng);
+                const Vec3 w = follow_specular(m, hit, o, d, inside, inside_ior, rng);
+                flux *= w;
+                // Russian roulette as at diffuse vertices, on the event's weight (a mirror's
+                // reflectance; clear glass weighs 1 and is never cut).
+                const float q = depth >= 3 ? std::min(1.0f, max_component(w)) : 1.0f;
+                if (q < 1 && q > 0) {
+                    if (rng.uniform() >= q) return;
+                    flux = flux * (1.0f / q);
+                }
             }
             if (is_black(flux)) return;
         }

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/sampling.h"
+#include "stages/render/gather_blockers.h"
 
 namespace sl {
 
@@ -15,18 +16,30 @@ uint32_t gather_surface_at(const RenderContext& ctx, const VisiblePoint& vp, con
     constexpr float kSameSurface = 0.7f;
     const double inv_count = 1.0 / static_cast<double>(std::max<int64_t>(photons_emitted, 1));
     double& r2 = buffer.radius2[pixel];
-    // This pass's estimate: f * flux / (pi R^2 * photons emitted this pass).
-    const float k = static_cast<float>(inv_count / (kPi * r2));
+    const Vec3 n = vp.normal, p = vp.position;
+    // The surfaces that cut the disc (a wall at a floor's edge): photons beyond them are not
+    // gathered, and the disc's area is what is left of it (gather_blockers.h).
+    const GatherBlockers blockers(ctx.geometry, p, n, static_cast<float>(r2));
+    // This pass's estimate: f * flux / (area * photons emitted this pass), area pi R^2 but for blockers.
+    const float k = static_cast<float>(inv_count / blockers.area());
     const float wr = vp.weight.x * k, wg = vp.weight.y * k, wb = vp.weight.z * k;
-    const Vec3 n = vp.normal;
+    // Sides: a photon counts only on the side of its own surface the point is on, and only if it
+    // is not below the point's surface (stacked sheets, a thin table over a floor). The slack
+    // (a tenth of the radius) lets curved surfaces of curvature radius above ~5 R through.
+    const float slack = 0.1f * static_cast<float>(std::sqrt(r2));
     uint32_t found = 0;
-    photons.for_each_near(vp.position.x, vp.position.y, vp.position.z, static_cast<float>(r2),
-                          [&](const PhotonRecord& ph) {
+    photons.for_each_near(p.x, p.y, p.z, static_cast<float>(r2), [&](const PhotonRecord& ph) {
         // cos(angle) < kSameSurface, without normalising the decoded normal.
         const Vec3 pn = decode_normal_unnormalized(ph.normal);
         const float c = dot(pn, n);
         if (c <= 0 || c * c < kSameSurface * kSameSurface * dot(pn, pn)) return;
         if (ph.depth > vp.depth_left) return;
+        const Vec3 q{ph.x, ph.y, ph.z};
+        const Vec3 v = q - p;
+        if (dot(v, n) < -slack) return;  // below the point's surface
+        const float behind = dot(v, pn);  // the point is behind the photon's surface
+        if (behind > 0 && behind * behind > slack * slack * dot(pn, pn)) return;
+        if (!blockers.visible(q)) return;
         ++found;
         const int s = layout.slot_of_bucket(bucket(ph.t_ns + vp.camera_ns));
         if (s < 0) return;

@@ -121,7 +121,7 @@ TEST(Overrides, BadValuesNameTheFlag) {
 
 TEST(Overrides, MaxDepthReplacesTheSceneAndIsChecked) {
     SceneDesc s = pulse_scene();
-    EXPECT_EQ(s.render.max_depth, 8);
+    EXPECT_EQ(s.render.max_depth, 1000);
     RenderOverrides o;
     o.max_depth = 3;
     apply_overrides(s, o);

@@ -1,0 +1,61 @@
+#pragma once
+// What stands between a visible point and the photons in its gather disc. A zero-thickness
+// wall on a floor has floor photons on both sides, all with the same normal: no normal test
+// tells the sunlit side's photons from the shaded side's, and a point at the wall's foot
+// gathered light through the sheet. So before it gathers, a visible point casts one short
+// ray per sector of its disc, along its tangent plane (tilted up a little so that a concave
+// surface does not block itself); a sector whose ray meets a surface keeps only the photons
+// on the point's side of that surface's plane, and the disc's area is cut to match (the
+// part of the sector beyond the plane holds no photon the point can see, so dividing by the
+// whole disc would darken every floor's edge where it meets a wall). A sector keeps the photons
+// on the point's side of its own and its neighbours' blockers, and its area is what is left
+// of it on that side of all three: clipping more than the blocker hides is unbiased (what is
+// cut from the area is cut from the photons), clipping less lets light through.
+#include <cstdint>
+
+#include "core/scene_geometry.h"
+#include "foundation/vec3.h"
+
+namespace sl {
+
+class GatherBlockers {
+public:
+    static constexpr int kSectors = 8;
+    // Rays from p (normal n, unit, facing the camera path) reaching sqrt(r2) along the disc.
+    GatherBlockers(const SceneGeometry& geometry, Vec3 p, Vec3 n, float r2);
+
+    bool any() const { return mask_ != 0; }
+    // The disc's area on the point's side of every blocker (pi r^2 when none).
+    double area() const { return area_; }
+    // Whether a photon at q lies on the point's side of the blockers of its sector and of the
+    // two sectors beside it (a wall nearly along one sector's middle ray is missed by that ray,
+    // not by its neighbours').
+    bool visible(Vec3 q) const {
+        if (!mask_) return true;
+        const Vec3 v = q - p_;
+        const int s = sector_of(dot(v, t_), dot(v, b_));
+        const uint32_t near = near_mask_[s] & mask_;
+        if (!near) return true;
+        for (int j = s - 1; j <= s + 1; ++j) {
+            const int k = j & (kSectors - 1);
+            if ((near & (1u << k)) && dot(m_[k], q) < c_[k]) return false;
+        }
+        return true;
+    }
+
+    // The sector of tangent-plane offset (x, y): k covers angles [k, k+1) * 45 degrees.
+    static int sector_of(float x, float y) {
+        if (y >= 0) return x >= 0 ? (x >= y ? 0 : 1) : (-x <= y ? 2 : 3);
+        return x < 0 ? (-x >= -y ? 4 : 5) : (x <= -y ? 6 : 7);
+    }
+
+private:
+    Vec3 p_, t_, b_;
+    Vec3 m_[kSectors];    // blocker normal, facing the point
+    float c_[kSectors];   // its plane: dot(m, x) = c, minus a small margin toward the far side
+    uint32_t mask_ = 0;   // sectors with a blocker
+    static constexpr uint32_t near_mask_[kSectors] = {0x83, 0x07, 0x0e, 0x1c, 0x38, 0x70, 0xe0, 0xc1};
+    double area_ = 0;
+};
+
+}  // namespace sl
