@@ -3,7 +3,7 @@
 // wall on a floor has floor photons on both sides, all with the same normal: no normal test
 // tells the sunlit side's photons from the shaded side's, and a point at the wall's foot
 // gathered light through the sheet. So before it gathers, a visible point casts one short
-// ray per sector of its disc, along its tangent plane (tilted up a little so that a concave
+// ray per quarter (sector) of its disc, along its tangent plane (tilted up a little so that a concave
 // surface does not block itself); a sector whose ray meets a surface keeps only the photons
 // on the point's side of that surface's plane, and the disc's area is cut to match (the
 // part of the sector beyond the plane holds no photon the point can see, so dividing by the
@@ -20,7 +20,7 @@ namespace sl {
 
 class GatherBlockers {
 public:
-    static constexpr int kSectors = 8;
+    static constexpr int kSectors = 4;
     // Rays from p (normal n, unit, facing the camera path) reaching sqrt(r2) along the disc.
     GatherBlockers(const SceneGeometry& geometry, Vec3 p, Vec3 n, float r2);
 
@@ -43,10 +43,10 @@ public:
         return true;
     }
 
-    // The sector of tangent-plane offset (x, y): k covers angles [k, k+1) * 45 degrees.
+    // The sector of tangent-plane offset (x, y): k covers angles [k, k+1) * 90 degrees.
     static int sector_of(float x, float y) {
-        if (y >= 0) return x >= 0 ? (x >= y ? 0 : 1) : (-x <= y ? 2 : 3);
-        return x < 0 ? (-x >= -y ? 4 : 5) : (x <= -y ? 6 : 7);
+        if (y >= 0) return x >= 0 ? 0 : 1;
+        return x < 0 ? 2 : 3;
     }
 
 private:
@@ -54,7 +54,7 @@ private:
     Vec3 m_[kSectors];    // blocker normal, facing the point
     float c_[kSectors];   // its plane: dot(m, x) = c, minus a small margin toward the far side
     uint32_t mask_ = 0;   // sectors with a blocker
-    static constexpr uint32_t near_mask_[kSectors] = {0x83, 0x07, 0x0e, 0x1c, 0x38, 0x70, 0xe0, 0xc1};
+    static constexpr uint32_t near_mask_[kSectors] = {0xb, 0x7, 0xe, 0xd};  // a sector and its two neighbours
     double area_ = 0;
 };
 
