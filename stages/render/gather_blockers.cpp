@@ -100,24 +100,42 @@ GatherBlockers::GatherBlockers(const SceneGeometry& geometry, Vec3 p, Vec3 n, fl
         uy[s] = -gb / gl;
         cuts[s] = true;
     }
+    // The mirrors: one per distinct line (a wall met by two rays counts once).
+    auto distinct = [&](const float* r, const float* x, const float* y, int n, float rk, float xk, float yk) {
+        for (int i = 0; i < n; ++i)
+            if (std::abs(r[i] - rk) <= 1e-4f * R && x[i] * xk + y[i] * yk > 0.99999f) return false;
+        return true;
+    };
+    for (int s = 0; s < kSectors; ++s) {
+        if (!cuts[s]) continue;
+        const float d = std::max(rho[s], kMirrorMin * R);
+        if (distinct(mirror_d_, mirror_x_, mirror_y_, mirrors_, d, -ux[s], -uy[s]))
+            mirror_d_[mirrors_] = d, mirror_x_[mirrors_] = -ux[s], mirror_y_[mirrors_++] = -uy[s];
+    }
     for (int s = 0; mask_ && s < kSectors; ++s) {
-        float r[3], x[3], y[3];
+        float r[3 + kSectors], x[3 + kSectors], y[3 + kSectors];
         int lines = 0;
         for (int j = s - 1; j <= s + 1; ++j) {
             const int k = j & (kSectors - 1);
-            if (!cuts[k]) continue;
-            bool same = false;  // the same plane met by two rays (one wall) counts once
-            for (int i = 0; i < lines; ++i)
-                same |= std::abs(r[i] - rho[k]) <= 1e-4f * R && x[i] * ux[k] + y[i] * uy[k] > 0.99999f;
-            if (!same) r[lines] = rho[k], x[lines] = ux[k], y[lines++] = uy[k];
+            if (cuts[k] && distinct(r, x, y, lines, rho[k], ux[k], uy[k]))
+                r[lines] = rho[k], x[lines] = ux[k], y[lines++] = uy[k];
         }
+        for (int i = 0; i < mirrors_; ++i) r[lines] = mirror_d_[i], x[lines] = mirror_x_[i], y[lines++] = mirror_y_[i];
         if (!lines) continue;
-        const double kept = lines == 1 ? clipped_sector_area(s, r[0], x[0], y[0], R)
-                                       : clipped_sector_area(s, r, x, y, lines, R);
-        area_ -= 0.5 * static_cast<double>(R) * R * kSectorAngle - kept;
+        const double sector = 0.5 * static_cast<double>(R) * R * kSectorAngle;
+        double kept;
+        if (lines == 1) {
+            kept = clipped_sector_area(s, r[0], x[0], y[0], R);
+        } else if (lines == 2 && x[0] * x[1] + y[0] * y[1] < -0.99999f) {
+            // A wall and its mirror: the two cuts lie on opposite sides and never overlap.
+            kept = clipped_sector_area(s, r[0], x[0], y[0], R) + clipped_sector_area(s, r[1], x[1], y[1], R) - sector;
+        } else {
+            kept = clipped_sector_area(s, r, x, y, lines, R);
+        }
+        area_ -= sector - kept;
     }
-    // A point in a corner keeps a quarter of its disc; nothing real keeps less than a sliver.
-    area_ = std::max(area_, kPi * static_cast<double>(r2) / 16);
+    // Only a guard: a point in a corner keeps a quarter of the disc within R/4 of it at least.
+    area_ = std::max(area_, kPi * static_cast<double>(r2) * 1e-3);
 }
 
 }  // namespace sl

@@ -10,7 +10,12 @@
 // whole disc would darken every floor's edge where it meets a wall). A sector keeps the photons
 // on the point's side of its own and its neighbours' blockers, and its area is what is left
 // of it on that side of all three: clipping more than the blocker hides is unbiased (what is
-// cut from the area is cut from the photons), clipping less lets light through.
+// cut from the area is cut from the photons), clipping less lets light through. What is left of
+// a disc cut at a wall has its centroid away from the wall: where the light changes across it
+// (the shaded foot of a wall), the estimate is that of a point farther out. So each blocker is
+// mirrored through the point too, at no less than a quarter of the radius (a point on the
+// wall's line would keep nothing: the noise would grow without bound), and the part beyond
+// the mirror is left out of both the photons and the area.
 #include <cstdint>
 
 #include "core/scene_geometry.h"
@@ -29,11 +34,14 @@ public:
     double area() const { return area_; }
     // Whether a photon at q lies on the point's side of the blockers of its sector and of the
     // two sectors beside it (a wall nearly along one sector's middle ray is missed by that ray,
-    // not by its neighbours').
+    // not by its neighbours'), and inside every blocker's mirror line.
     bool visible(Vec3 q) const {
         if (!mask_) return true;
         const Vec3 v = q - p_;
-        const int s = sector_of(dot(v, t_), dot(v, b_));
+        const float x = dot(v, t_), y = dot(v, b_);
+        for (int i = 0; i < mirrors_; ++i)
+            if (x * mirror_x_[i] + y * mirror_y_[i] > mirror_d_[i]) return false;
+        const int s = sector_of(x, y);
         const uint32_t near = near_mask_[s] & mask_;
         if (!near) return true;
         for (int j = s - 1; j <= s + 1; ++j) {
@@ -55,6 +63,12 @@ private:
     float c_[kSectors];   // its plane: dot(m, x) = c, minus a small margin toward the far side
     uint32_t mask_ = 0;   // sectors with a blocker
     static constexpr uint32_t near_mask_[kSectors] = {0xb, 0x7, 0xe, 0xd};  // a sector and its two neighbours
+    // Each blocker's line mirrored through the point, at least kMirrorMin R away: the disc is
+    // cut as much on the far side of the point as the blocker cuts it (tangent-plane offsets
+    // (x, y) with x mx + y my > d are left out), so what is kept is centred on the point.
+    static constexpr float kMirrorMin = 0.25f;
+    float mirror_x_[kSectors], mirror_y_[kSectors], mirror_d_[kSectors];
+    int mirrors_ = 0;
     double area_ = 0;
 };
 

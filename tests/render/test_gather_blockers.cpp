@@ -1,8 +1,9 @@
 // The gather's blockers against geometry worked out by hand: a point on a floor at distance D
-// from a wall standing on it keeps the disc less the circular segment beyond the wall,
-// R^2 (pi - acos(D/R)) + D sqrt(R^2 - D^2), whatever the wall's direction against the point's
-// tangent frame, and sees photons on its own side only; a point inside a large sphere (a
-// concave surface) and one on an open floor keep the whole disc.
+// from a wall standing on it keeps the disc less the circular segment beyond the wall and the
+// one beyond its mirror line (at max(D, R/4) on the other side), a segment at distance d being
+// R^2 acos(d/R) - d sqrt(R^2 - d^2), whatever the wall's direction against the point's tangent
+// frame, and keeps exactly the photons in between; a point inside a large sphere (a concave
+// surface) and one on an open floor keep the whole disc.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -45,8 +46,9 @@ TEST(GatherBlockers, APointBesideAWallKeepsTheDiscLessTheSegmentBeyondIt) {
             SCOPED_TRACE(::testing::Message() << "wall at " << angle << " rad, D = " << D);
             const Vec3 p = normal_of_wall * static_cast<float>(D);
             GatherBlockers b(ctx.geometry, p, {0, 1, 0}, R * R);
-            const double d = std::min(D, static_cast<double>(R));
-            const double want = R * R * (kPiD - std::acos(d / R)) + d * std::sqrt(R * R - d * d);
+            auto segment = [R](double d) { return d >= R ? 0.0 : R * R * std::acos(d / R) - d * std::sqrt(R * R - d * d); };
+            const double mirror = std::max(D, 0.25 * R);
+            const double want = kPiD * R * R - segment(D) - segment(mirror);
             EXPECT_NEAR(b.area(), want, 0.004 * kPiD * R * R);
             // Photons on the floor: on the point's side kept, beyond the wall not.
             for (float s : {-0.9f, -0.4f, 0.0f, 0.4f, 0.9f}) {
@@ -55,6 +57,11 @@ TEST(GatherBlockers, APointBesideAWallKeepsTheDiscLessTheSegmentBeyondIt) {
                 const Vec3 beyond = normal_of_wall * -0.001f + along * (s * R);
                 if (dot(mine - p, mine - p) < R * R) EXPECT_TRUE(b.visible(mine)) << s;
                 if (D < R && dot(beyond - p, beyond - p) < R * R) EXPECT_FALSE(b.visible(beyond)) << s;
+                // Past the mirror line, on the point's own side: left out too.
+                const Vec3 past = p + normal_of_wall * static_cast<float>(mirror + 0.002) + along * (s * 0.3f * R);
+                if (D < R && dot(past - p, past - p) < R * R) EXPECT_FALSE(b.visible(past)) << s;
+                const Vec3 within = p + normal_of_wall * static_cast<float>(mirror - 0.002) + along * (s * 0.3f * R);
+                if (D < R && D > 0.003 && dot(within - p, within - p) < R * R) EXPECT_TRUE(b.visible(within)) << s;
             }
         }
     }
