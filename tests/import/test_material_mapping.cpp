@@ -196,6 +196,29 @@ TEST(MaterialMapping, MtlNsAndKsAsGgxMaterials) {
     EXPECT_EQ(all.find("'polished'"), std::string::npos) << all;
 }
 
+// A scene file's own GGX materials render through their stand-ins; the program warns once
+// for each that a shape uses and that loses something (the rough metal), and for no other.
+TEST(MaterialMapping, SceneFileGgxMaterialsWarnOnlyWhereApproximated) {
+    TempDir dir;
+    std::ofstream(dir.file("s.json")) << R"({"camera": {"position": [0, 1, 3], "look_at": [0, 1, 0], "width": 8, "height": 8},
+      "materials": {"brushed": {"type": "conductor", "reflectance": [0.9, 0.6, 0.5], "roughness": 0.3},
+                    "polished": {"type": "conductor", "eta": [0.2, 0.9, 1.1], "k": [3.9, 2.4, 2.1], "roughness": 0.05},
+                    "plastic": {"type": "metallic_roughness", "base_color": [0.8, 0.1, 0.1]},
+                    "unused": {"type": "rough_dielectric", "roughness": 0.5}},
+      "shapes": [{"type": "quad", "corner": [-1, 0, 1], "edge1": [2, 0, 0], "edge2": [0, 0, -2], "material": "brushed"},
+                 {"type": "sphere", "center": [0, 0.5, 0], "radius": 0.3, "material": "plastic"},
+                 {"type": "sphere", "center": [0.6, 0.5, 0], "radius": 0.2, "material": "polished"}],
+      "lights": [{"type": "point", "position": [0, 1.5, 0], "power": [10, 10, 10]}],
+      "time": {"frames": 2}, "render": {"passes": 1, "photons_per_pass": 1000}})";
+    ProgramResult r = run_program({"render", dir.file("s.json"), "--no-progress", "-o", dir.file("out.mp4")});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    size_t warnings = 0;
+    for (size_t at = r.err.find("warning:"); at != std::string::npos; at = r.err.find("warning:", at + 1)) ++warnings;
+    EXPECT_EQ(warnings, 1u) << r.err;
+    EXPECT_NE(r.err.find("warning: " + dir.file("s.json") + ": material 'brushed': rough metal (roughness 0.30)"),
+              std::string::npos) << r.err;
+}
+
 TEST(MaterialMapping, WrapModesAndBilinear) {
     TextureImage t;
     t.width = 4;
