@@ -181,7 +181,8 @@ private:
             MaterialDesc d;
             d.name = item.key();
             d.type =
-                static_cast<MaterialType>(m.choice("type", {"diffuse", "mirror", "dielectric"}));
+                static_cast<MaterialType>(m.choice("type", {"diffuse", "mirror", "dielectric", "conductor",
+                                                            "rough_dielectric", "metallic_roughness"}));
             const Range unit = Range::closed(0, 1);
             switch (d.type) {
                 case MaterialType::Diffuse:
@@ -196,6 +197,37 @@ private:
                 case MaterialType::Dielectric:
                     m.expect_keys(scene_keys_of("materials", "dielectric"));
                     d.ior = number_f(m, "ior", Range::positive(), d.ior);
+                    break;
+                case MaterialType::Conductor:
+                    m.expect_keys(scene_keys_of("materials", "conductor"));
+                    d.roughness = number_f(m, "roughness", unit, d.roughness);
+                    if (m.has("reflectance") && (m.has("eta") || m.has("k")))
+                        m.fail("reflectance", "give either reflectance (at normal incidence) or eta and k, not both");
+                    if (m.has("eta") != m.has("k"))
+                        m.fail(m.has("eta") ? "eta" : "k", "a complex index needs both eta and k");
+                    if (m.has("reflectance")) d.reflectance = to_vec3(m, "reflectance", m.triple("reflectance", unit));
+                    if (m.has("eta")) {
+                        d.complex_ior = true;
+                        d.eta = to_vec3(m, "eta", m.triple("eta", Range::open(0, 100)));
+                        d.k = to_vec3(m, "k", m.triple("k", Range::closed(0, 100)));
+                    }
+                    break;
+                case MaterialType::RoughDielectric:
+                    m.expect_keys(scene_keys_of("materials", "rough_dielectric"));
+                    d.ior = number_f(m, "ior", Range::open(0, 100), d.ior);
+                    if (d.ior == 1) m.fail("ior", "must differ from 1 (an index of 1 is no interface)");
+                    d.roughness = number_f(m, "roughness", unit, d.roughness);
+                    break;
+                case MaterialType::MetallicRoughness:
+                    m.expect_keys(scene_keys_of("materials", "metallic_roughness"));
+                    if (m.has("base_color")) d.albedo = to_vec3(m, "base_color", m.triple("base_color", unit));
+                    d.metallic = number_f(m, "metallic", unit, d.metallic);
+                    d.roughness = number_f(m, "roughness", unit, d.roughness);
+                    d.ior = number_f(m, "ior", Range::open(0, 100), d.ior);
+                    d.specular = number_f(m, "specular", unit, d.specular);
+                    d.transmission = number_f(m, "transmission", unit, d.transmission);
+                    if (d.transmission > 0 && d.ior == 1)
+                        m.fail("ior", "must differ from 1 when the material transmits (an index of 1 is no interface)");
                     break;
             }
             material_index_[d.name] = static_cast<int>(scene_.materials.size());

@@ -27,14 +27,26 @@ struct CameraDesc {
     int height = 256;
 };
 
-enum class MaterialType { Diffuse, Mirror, Dielectric };
+// Diffuse, Mirror and Dielectric are the surfaces the estimator draws exactly; the GGX
+// materials (core/bsdf/) are drawn by a stand-in among those three until it evaluates their
+// BSDFs (core/material_stand_in.h says which, and warns when it is an approximation).
+enum class MaterialType { Diffuse, Mirror, Dielectric, Conductor, RoughDielectric, MetallicRoughness };
 
 struct MaterialDesc {
     std::string name;
     MaterialType type = MaterialType::Diffuse;
-    Vec3 albedo{0.8f};       // diffuse
-    Vec3 reflectance{1.0f};  // mirror
-    float ior = 1.5f;        // dielectric
+    Vec3 albedo{0.8f};       // diffuse; metallic_roughness: the base colour
+    Vec3 reflectance{1.0f};  // mirror; conductor: reflectance at normal incidence (F0)
+    float ior = 1.5f;        // dielectric, rough_dielectric, metallic_roughness
+    // GGX materials: roughness as glTF and Blender mean it (the distribution's alpha = roughness^2).
+    float roughness = 0.5f;
+    bool complex_ior = false;  // conductor: eta + i k rather than F0
+    Vec3 eta{1.0f}, k;         // conductor with complex_ior
+    float metallic = 0;        // metallic_roughness
+    float specular = 1;        // metallic_roughness: scales the dielectric reflectance (glTF specularFactor)
+    Vec3 specular_color{1.0f};  // metallic_roughness: tints it (glTF specularColorFactor)
+    float transmission = 0;    // metallic_roughness: the share of the dielectric base that transmits
+    int metallic_roughness_texture = -1;  // glTF: G scales roughness, B metallic (linear)
     // From imported files (glTF, OBJ/MTL); the scene JSON sets none of these.
     int albedo_texture = -1;    // index into SceneDesc::textures; multiplies albedo
     Vec3 emission;              // W sr^-1 m^-2: the surface is an area light

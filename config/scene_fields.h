@@ -16,7 +16,10 @@ template <class F> void visit_fields(const CameraDesc& c, F&& f) {
 
 template <class F> void visit_fields(const MaterialDesc& m, F&& f) {
     f("name", m.name); f("type", m.type); f("albedo", m.albedo); f("reflectance", m.reflectance);
-    f("ior", m.ior); f("albedo_texture", m.albedo_texture); f("emission", m.emission);
+    f("ior", m.ior); f("roughness", m.roughness); f("complex_ior", m.complex_ior); f("eta", m.eta); f("k", m.k);
+    f("metallic", m.metallic); f("specular", m.specular); f("specular_color", m.specular_color);
+    f("transmission", m.transmission); f("metallic_roughness_texture", m.metallic_roughness_texture);
+    f("albedo_texture", m.albedo_texture); f("emission", m.emission);
     f("emission_texture", m.emission_texture); f("double_sided", m.double_sided);
 }
 

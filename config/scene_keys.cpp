@@ -15,6 +15,9 @@ constexpr K kCamera = {"position", "look_at", "up", "vfov_deg", "width", "height
 constexpr K kDiffuse = {"type", "albedo"};
 constexpr K kMirror = {"type", "reflectance"};
 constexpr K kDielectric = {"type", "ior"};
+constexpr K kConductor = {"type", "reflectance", "eta", "k", "roughness"};
+constexpr K kRoughDielectric = {"type", "ior", "roughness"};
+constexpr K kMetallicRoughness = {"type", "base_color", "metallic", "roughness", "ior", "specular", "transmission"};
 constexpr K kQuadShape = {"type", "corner", "edge1", "edge2", "material"};
 constexpr K kBox = {"type", "min", "max", "material"};
 constexpr K kSphere = {"type", "center", "radius", "material"};
@@ -38,6 +41,9 @@ const SceneObjectKeys kObjects[] = {
     {"materials", "diffuse", kDiffuse},
     {"materials", "mirror", kMirror},
     {"materials", "dielectric", kDielectric},
+    {"materials", "conductor", kConductor},
+    {"materials", "rough_dielectric", kRoughDielectric},
+    {"materials", "metallic_roughness", kMetallicRoughness},
     {"shapes", "quad", kQuadShape},
     {"shapes", "box", kBox},
     {"shapes", "sphere", kSphere},

@@ -8,12 +8,13 @@
 #include <vector>
 
 #include "config/scene_desc.h"
+#include "core/material_stand_in.h"
 #include "core/texture.h"
 
 namespace sl {
 
 struct SurfaceMaterial {
-    MaterialType type = MaterialType::Diffuse;
+    MaterialType type = MaterialType::Diffuse;  // Diffuse, Mirror or Dielectric (core/material_stand_in.h)
     Vec3 albedo;       // diffuse
     Vec3 reflectance;  // mirror
     float ior = 1.5f;  // dielectric
@@ -33,9 +34,11 @@ public:
             return index < 0 ? nullptr : scene.textures[static_cast<size_t>(index)].image.get();
         };
         materials_.reserve(scene.materials.size());
-        for (const MaterialDesc& d : scene.materials)
-            materials_.push_back({d.type, d.albedo, d.reflectance, d.ior, d.emission, image(d.albedo_texture),
+        for (const MaterialDesc& d : scene.materials) {
+            const StandIn s = stand_in(d);  // a GGX material as one of the three surfaces
+            materials_.push_back({s.type, s.albedo, s.reflectance, s.ior, d.emission, image(d.albedo_texture),
                                   image(d.emission_texture), d.double_sided});
+        }
     }
     const SurfaceMaterial& operator[](int i) const { return materials_[static_cast<size_t>(i)]; }
     size_t size() const { return materials_.size(); }

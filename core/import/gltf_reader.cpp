@@ -17,6 +17,7 @@
 #include "foundation/constants.h"
 #include "foundation/errors.h"
 #include "core/import/imported_file.h"
+#include "core/material_stand_in.h"
 #include "core/import/light_mapping.h"
 
 namespace sl {
@@ -275,7 +276,7 @@ private:
     void check_extensions() {
         static const std::set<std::string> supported = {
             "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_materials_transmission",
-            "KHR_materials_ior"};
+            "KHR_materials_ior", "KHR_materials_specular"};
         for (const std::string& e : model_.extensionsRequired)
             if (!supported.count(e))
                 fail("requires the extension " + e + ", which is not supported" +
@@ -338,6 +339,17 @@ private:
         return v.IsNumber() ? v.GetNumberAsDouble() : dflt;
     }
 
+    static Vec3 ext_color(const tinygltf::ExtensionMap& ext, const char* name, const char* key, Vec3 dflt) {
+        auto it = ext.find(name);
+        if (it == ext.end() || !it->second.Has(key)) return dflt;
+        const tinygltf::Value& v = it->second.Get(key);
+        if (!v.IsArray() || v.ArrayLen() < 3) return dflt;
+        Vec3 c = dflt;
+        for (int i = 0; i < 3; ++i)
+            if (v.Get(i).IsNumber()) c[i] = static_cast<float>(std::clamp(v.Get(i).GetNumberAsDouble(), 0.0, 1e3));
+        return c;
+    }
+
     MaterialDesc material(const tinygltf::Material& gm) {
         MaterialDesc m;
         const std::string name = gm.name.empty() ? "material " + std::to_string(out_.materials.size()) : gm.name;
@@ -367,26 +379,32 @@ private:
             fail("material '" + name + "': the emission (emissiveFactor x emissiveStrength) is larger than 1e30, "
                  "the largest radiance accepted");
         m.double_sided = gm.doubleSided;
-        if (transmission > 0.5) {
-            m.type = MaterialType::Dielectric;
-            m.ior = static_cast<float>(ior > 0 ? ior : 1.5);
-            if (pbr.baseColorTexture.index >= 0 || max_component(Vec3(1) - base) > 0.01f)
-                notes.push_back("the glass is clear: base colour and its texture are ignored");
-            if (roughness > 0.1) notes.push_back("rough glass is drawn smooth");
-        } else if (metallic >= 0.9 && roughness <= 0.1) {
-            m.type = MaterialType::Mirror;
-            m.reflectance = base;
-            if (pbr.baseColorTexture.index >= 0) notes.push_back("a mirror keeps no texture (base colour factor only)");
-        } else {
-            m.albedo = base;
-            m.albedo_texture = texture(pbr.baseColorTexture.index, true, name, "base colour");
-            if (pbr.baseColorTexture.texCoord != 0) notes.push_back("only TEXCOORD_0 is used");
-            if (metallic >= 0.9) notes.push_back("rough metal (roughness " + std::to_string(roughness).substr(0, 4) +
-                                                 ") is drawn diffuse with the base colour");
-            else if (metallic > 0.1) notes.push_back("partly metallic: drawn diffuse with the base colour");
-            if (transmission > 0) notes.push_back("partial transmission is ignored");
-        }
-        if (m.type != MaterialType::Diffuse && m.emits()) {
+        // glTF's metallic-roughness material as it is meant (core/bsdf/bsdf.h evaluates it; the
+        // estimator draws it by the stand-in of core/material_stand_in.h, which notes its losses).
+        m.type = MaterialType::MetallicRoughness;
+        m.albedo = base;
+        m.metallic = static_cast<float>(std::clamp(metallic, 0.0, 1.0));
+        m.roughness = static_cast<float>(std::clamp(roughness, 0.0, 1.0));
+        m.transmission = static_cast<float>(std::clamp(transmission, 0.0, 1.0));
+        m.ior = static_cast<float>(ior >= 1 && ior <= 100 ? ior : 1.5);
+        if (ior != 0 && (ior < 1 || ior > 100)) notes.push_back("an ior outside [1, 100] is read as 1.5");
+        if (ior == 0) m.ior = 1.5f;  // KHR_materials_ior: 0 means the old specular-glossiness 'no Fresnel'
+        if (m.transmission > 0 && m.ior == 1) m.ior = 1.5f;
+        // KHR_materials_specular: specularFactor and specularColorFactor scale the dielectric F0.
+        m.specular = static_cast<float>(std::clamp(ext_number(gm.extensions, "KHR_materials_specular", "specularFactor", 1), 0.0, 1.0));
+        m.specular_color = ext_color(gm.extensions, "KHR_materials_specular", "specularColorFactor", Vec3(1));
+        // The notes see whether there is a base colour texture; it is read only where it is drawn
+        // (a diffuse stand-in), as every texture is decoded only when a drawn material uses it.
+        m.albedo_texture = pbr.baseColorTexture.index >= 0 ? 0 : -1;
+        const std::string lost = approximation_note(m);
+        if (!lost.empty()) notes.push_back(lost);
+        const bool drawn_diffuse = stand_in(m).type == MaterialType::Diffuse;
+        m.albedo_texture = drawn_diffuse ? texture(pbr.baseColorTexture.index, true, name, "base colour") : -1;
+        if (drawn_diffuse && pbr.baseColorTexture.index >= 0 && pbr.baseColorTexture.texCoord != 0)
+            notes.push_back("only TEXCOORD_0 is used");
+        if (pbr.metallicRoughnessTexture.index >= 0)
+            notes.push_back("the metallic-roughness texture is not drawn yet (its factors are)");
+        if (!drawn_diffuse && m.emits()) {
             notes.push_back("a mirror or glass surface does not emit here");
             m.emission = Vec3(0);
         }
@@ -394,7 +412,6 @@ private:
         if (gm.alphaMode == "BLEND" || gm.alphaMode == "MASK")
             notes.push_back("alpha " + gm.alphaMode + " is ignored (the surface is opaque)");
         if (gm.normalTexture.index >= 0) notes.push_back("the normal map is ignored");
-        if (pbr.metallicRoughnessTexture.index >= 0) notes.push_back("the metallic-roughness texture is ignored");
         std::vector<std::string> lines;
         if (!notes.empty()) {
             std::string all;

@@ -14,6 +14,7 @@
 #include "config/limits.h"
 #include "foundation/errors.h"
 #include "core/import/imported_file.h"
+#include "core/material_stand_in.h"
 
 namespace sl {
 namespace fs = std::filesystem;
@@ -149,7 +150,7 @@ void read_mtl(const std::string& path, ImportedFile& out, MtlResult& mtl) {
     MaterialDesc* cur = nullptr;
     // This library's materials are mtl.materials[first..]; extra and notes are this call's.
     const size_t first = mtl.materials.size();
-    struct Extra { Vec3 ks{0}; int illum = -1; float d = 1; bool ke_set = false; size_t ke_line = 0; };
+    struct Extra { Vec3 ks{0}; int illum = -1; float d = 1; float ns = -1; bool ke_set = false; size_t ke_line = 0; };
     std::vector<Extra> extra;
     // What each material loses, gathered into one warning line per material at the end.
     std::vector<std::vector<std::string>> notes;
@@ -194,6 +195,9 @@ void read_mtl(const std::string& path, ImportedFile& out, MtlResult& mtl) {
             x.ke_line = lr.line_no;
         } else if (k == "Ks") {
             x.ks = lr.triple(t, t.size() == 2 ? 1 : 3);
+        } else if (k == "Ns") {
+            x.ns = lr.number(t.size() > 1 ? t[1] : "");
+            if (!(x.ns >= 0)) lr.fail("Ns must be >= 0");
         } else if (k == "Ni") {
             cur->ior = lr.number(t.size() > 1 ? t[1] : "");
             if (!(cur->ior > 0)) lr.fail("Ni must be > 0");
@@ -215,7 +219,7 @@ void read_mtl(const std::string& path, ImportedFile& out, MtlResult& mtl) {
         } else if (k == "map_Ks" || k == "map_Ns" || k == "map_Ka" || k == "refl") {
             warn_once(std::string(k), std::string(k) + " is ignored");
         }
-        // Ka, Ns, Tf, sharpness and other statements shape nothing this renderer draws.
+        // Ka, Tf, sharpness and other statements shape nothing this renderer draws.
     }
     for (size_t i = 0; i < extra.size(); ++i) {
         MaterialDesc& m = mtl.materials[first + i];
@@ -223,24 +227,42 @@ void read_mtl(const std::string& path, ImportedFile& out, MtlResult& mtl) {
         cur_index = i;
         const Extra& x = extra[i];
         if (m.emission_texture >= 0 && !x.ke_set) m.emission = Vec3(1);
+        // Ns (the Phong exponent, 0..1000) as a GGX roughness the way Blender's OBJ exporter and
+        // importer pair them: Ns = 1000 (1 - roughness)^2, roughness = 1 - sqrt(Ns / 1000).
+        // Without Ns a reflecting or glass material stays perfectly smooth.
+        const bool has_ns = x.ns >= 0;
+        const float roughness = has_ns ? 1 - std::sqrt(std::min(x.ns, 1000.0f) / 1000) : 0;
         if (x.illum == 3 || x.illum == 5) {
-            m.type = MaterialType::Mirror;
             m.reflectance = is_black(x.ks) ? Vec3(1) : x.ks;
+            m.type = has_ns ? MaterialType::Conductor : MaterialType::Mirror;
+            m.roughness = roughness;
         } else if (x.illum == 4 || x.illum == 6 || x.illum == 7 || x.illum == 9) {
-            m.type = MaterialType::Dielectric;
+            m.type = has_ns ? MaterialType::RoughDielectric : MaterialType::Dielectric;
+            m.roughness = roughness;
             if (m.ior <= 1) m.ior = 1.5f, warn_once("ior", "Ni missing or <= 1 for glass: 1.5 is used");
         } else if (x.illum == 8) {
             warn_once("illum", "illum 8 (reflection without ray tracing) is drawn diffuse");
+        } else if (has_ns && max_component(x.ks) > 0.05f) {
+            // A diffuse base under a specular layer: Ks 0.5 (Blender's specular 0.5) is the
+            // reflectance of glass at ior 1.5, glTF's specularFactor 1; a coloured Ks tints it.
+            m.type = MaterialType::MetallicRoughness;
+            m.roughness = roughness;
+            const float ks = max_component(vmin(x.ks, Vec3(1)));
+            m.specular = std::min(1.0f, 2 * ks);
+            m.specular_color = vmin(x.ks, Vec3(1)) / ks;
+            m.ior = 1.5f;
         }
-        if (m.type != MaterialType::Diffuse && (m.albedo_texture >= 0 || m.emits()))
+        const bool drawn_diffuse = stand_in(m).type == MaterialType::Diffuse;
+        if (!drawn_diffuse && (m.albedo_texture >= 0 || m.emits()))
             warn_once("specular", "a mirror or glass material keeps no texture or emission");
-        if (m.type != MaterialType::Diffuse) {
+        if (!drawn_diffuse) {
             m.albedo_texture = -1;
             m.emission = Vec3(0);
             m.emission_texture = -1;
         }
         if (m.type == MaterialType::Diffuse && max_component(x.ks) > 0.05f)
             warn_once("ks", "the specular colour Ks is ignored (the surface is diffuse)");
+        if (const std::string lost = approximation_note(m); !lost.empty()) warn_once(lost, lost);
         if (x.d < 1) warn_once("alpha", "transparency d/Tr is ignored (the surface is opaque)");
         if (max_component(m.albedo) > 1 || m.albedo.x < 0 || m.albedo.y < 0 || m.albedo.z < 0) {
             warn_once("kd", "Kd outside [0, 1] is clamped");

@@ -7,6 +7,7 @@
 
 #include "foundation/errors.h"
 #include "core/import/imported_file.h"
+#include "core/material_stand_in.h"
 #include "core/placement.h"
 #include "core/texture.h"
 #include "core/texture_load.h"
@@ -47,6 +48,16 @@ ImportedFile read_file(const ShapeDesc& s, const std::string& scene_source) {
 void resolve_imports(SceneDesc& scene) {
     if (scene.imports_resolved) return;
     std::set<std::string> warned;
+    // The scene file's own GGX materials that a shape uses, drawn by a stand-in: one line each
+    // for what that loses (core/material_stand_in.h).
+    for (size_t i = 0; i < scene.materials.size(); ++i) {
+        bool used = false;
+        for (const ShapeDesc& s : scene.shapes) used |= s.material == static_cast<int>(i);
+        const std::string lost = used ? approximation_note(scene.materials[i]) : std::string();
+        if (!lost.empty())
+            std::fprintf(stderr, "warning: %s: material '%s': %s\n", scene.source.c_str(),
+                         scene.materials[i].name.c_str(), lost.c_str());
+    }
     std::vector<std::string> seen_files;
     for (ShapeDesc& s : scene.shapes) {
         if (!is_import(s) || s.mesh) continue;
@@ -79,6 +90,7 @@ void resolve_imports(SceneDesc& scene) {
                 if (!used[i]) continue;
                 MaterialDesc m = f.materials[i];
                 m.albedo_texture = texture(m.albedo_texture);
+                m.metallic_roughness_texture = -1;  // not drawn yet: not decoded (the importer noted it)
                 m.emission_texture = m.emits() ? texture(m.emission_texture) : -1;
                 material_map[i] = static_cast<int>(scene.materials.size());
                 scene.materials.push_back(std::move(m));

@@ -6,6 +6,7 @@
 
 #include "foundation/errors.h"
 #include "core/import/imported_file.h"
+#include "core/material_stand_in.h"
 #include "core/texture.h"
 #include "tests/common/temp_dir.h"
 #include "tests/import/model_writers.h"
@@ -34,13 +35,19 @@ TEST(MaterialMapping, GltfMetallicRoughnessTransmissionEmission) {
     std::ofstream(dir.file("m.gltf")) << j.dump();
     ImportedFile f = read_gltf(dir.file("m.gltf"), true);
     ASSERT_EQ(f.materials.size(), 5u);
-    EXPECT_EQ(f.materials[0].type, MaterialType::Diffuse);
+    for (const MaterialDesc& m : f.materials) EXPECT_EQ(m.type, MaterialType::MetallicRoughness);
+    // Drawn (core/material_stand_in.h) as before the GGX materials existed:
+    EXPECT_EQ(stand_in(f.materials[0]).type, MaterialType::Diffuse);
     EXPECT_FLOAT_EQ(f.materials[0].albedo.y, 0.4f);
-    EXPECT_EQ(f.materials[1].type, MaterialType::Mirror);
-    EXPECT_FLOAT_EQ(f.materials[1].reflectance.x, 0.9f);
-    EXPECT_EQ(f.materials[2].type, MaterialType::Diffuse);  // rough metal: approximated, and said so
-    EXPECT_EQ(f.materials[3].type, MaterialType::Dielectric);
+    EXPECT_EQ(stand_in(f.materials[1]).type, MaterialType::Mirror);
+    EXPECT_FLOAT_EQ(stand_in(f.materials[1]).reflectance.x, 0.9f);
+    EXPECT_FLOAT_EQ(f.materials[1].metallic, 1.0f);
+    EXPECT_FLOAT_EQ(f.materials[1].roughness, 0.0f);
+    EXPECT_EQ(stand_in(f.materials[2]).type, MaterialType::Diffuse);  // rough metal: approximated, and said so
+    EXPECT_FLOAT_EQ(f.materials[2].roughness, 0.5f);
+    EXPECT_EQ(stand_in(f.materials[3]).type, MaterialType::Dielectric);
     EXPECT_FLOAT_EQ(f.materials[3].ior, 1.33f);
+    EXPECT_FLOAT_EQ(f.materials[3].transmission, 1.0f);
     EXPECT_TRUE(f.materials[4].emits());
     EXPECT_TRUE(f.materials[4].double_sided);
     EXPECT_FLOAT_EQ(f.materials[4].emission.z, 8.0f);  // factor (0.25, 0.5, 1) x strength 8
@@ -62,7 +69,7 @@ TEST(MaterialMapping, MtlIllumKdKeNi) {
                                      << "usemtl mirror\nf 1 2 3\nusemtl glass\nf 1 2 3\nusemtl lamp\nf 1 2 3\n";
     ImportedFile f = read_obj_mtl(dir.file("m.obj"), true);
     ASSERT_EQ(f.materials.size(), 3u);
-    EXPECT_EQ(f.materials[0].type, MaterialType::Mirror);
+    EXPECT_EQ(f.materials[0].type, MaterialType::Mirror);  // no Ns: perfectly smooth, as before
     EXPECT_FLOAT_EQ(f.materials[0].reflectance.y, 0.8f);
     EXPECT_EQ(f.materials[1].type, MaterialType::Dielectric);
     EXPECT_FLOAT_EQ(f.materials[1].ior, 1.7f);
@@ -118,6 +125,98 @@ TEST(MaterialMapping, MtlFromSeveralLibrariesAsBlenderWritesThem) {
         EXPECT_EQ(r.exit_code, 0) << r.err;
         EXPECT_TRUE(r.error_lines().empty()) << r.err;
     }
+}
+
+// Blender 3.4's glTF exporter at default settings: the default Principled BSDF (base 0.8,
+// metallic 0, roughness 0.5, with KHR_materials_specular and _ior), and an Emission-only
+// material (a black base colour, metallic and roughness left at glTF's default 1). Neither is
+// approximated in a way a viewer sees, so neither warns.
+TEST(MaterialMapping, BlenderDefaultPrincipledAndEmissionOnlyGiveNoWarning) {
+    TempDir dir;
+    ModelMesh m;
+    for (int i = 0; i < 3; ++i) m.quad({static_cast<float>(i), 0, 0}, {1, 0, 0}, {0, 1, 0}, i);
+    write_gltf(dir.file("b.gltf"), m, {{"Material", Vec3(0.8f)}, {"Lamp", Vec3(0), {5, 5, 5}}, {"Metal", Vec3(0.9f)}}, false);
+    std::ifstream in(dir.file("b.gltf"));
+    auto j = nlohmann::json::parse(in);
+    j["materials"][0]["pbrMetallicRoughness"] = {{"baseColorFactor", {0.8, 0.8, 0.8, 1}}, {"metallicFactor", 0},
+                                                 {"roughnessFactor", 0.5}};
+    j["materials"][0]["extensions"] = {{"KHR_materials_specular", {{"specularColorFactor", {1.186, 1.186, 1.186}}}},
+                                       {"KHR_materials_ior", {{"ior", 1.45}}}};
+    j["materials"][1]["pbrMetallicRoughness"] = {{"baseColorFactor", {0, 0, 0, 1}}};  // metallic, roughness: 1
+    j["materials"][2]["pbrMetallicRoughness"] = {{"baseColorFactor", {0.9, 0.9, 0.9, 1}}, {"metallicFactor", 1},
+                                                 {"roughnessFactor", 0.3}};
+    j["materials"][2]["extensions"] = {{"KHR_materials_specular", {{"specularFactor", 0.5}}}};
+    j["extensionsUsed"] = {"KHR_materials_emissive_strength", "KHR_materials_specular", "KHR_materials_ior"};
+    std::ofstream(dir.file("b.gltf")) << j.dump();
+    ImportedFile f = read_gltf(dir.file("b.gltf"), true);
+    ASSERT_EQ(f.materials.size(), 3u);
+    EXPECT_FLOAT_EQ(f.materials[0].ior, 1.45f);
+    EXPECT_FLOAT_EQ(f.materials[0].specular_color.x, 1.186f);
+    EXPECT_FLOAT_EQ(f.materials[0].roughness, 0.5f);
+    EXPECT_EQ(stand_in(f.materials[0]).type, MaterialType::Diffuse);
+    EXPECT_TRUE(f.materials[1].emits());
+    EXPECT_FLOAT_EQ(f.materials[1].metallic, 1.0f);
+    EXPECT_FLOAT_EQ(f.materials[2].specular, 0.5f);
+    // Only the rough metal, which is drawn diffuse, is warned about; nothing about the extensions.
+    ASSERT_EQ(f.warnings.size(), 1u) << f.warnings[0];
+    EXPECT_NE(f.warnings[0].find("material 'Metal': rough metal (roughness 0.30)"), std::string::npos) << f.warnings[0];
+}
+
+// MTL's Ns as Blender pairs it with roughness (Ns = 1000 (1 - r)^2), and Ks as a specular layer.
+TEST(MaterialMapping, MtlNsAndKsAsGgxMaterials) {
+    TempDir dir;
+    std::ofstream(dir.file("m.mtl")) << "newmtl plastic\nNs 250\nKd 0.8 0.1 0.1\nKs 0.5 0.5 0.5\nillum 2\n"
+                                     << "newmtl metal\nNs 490\nKs 0.9 0.8 0.7\nillum 3\n"
+                                     << "newmtl frosted\nNs 0\nNi 1.45\nillum 4\n"
+                                     << "newmtl polished\nNs 1000\nKs 1 1 1\nillum 3\n";
+    std::ofstream(dir.file("m.obj")) << "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nusemtl plastic\nf 1 2 3\n"
+                                     << "usemtl metal\nf 1 2 3\nusemtl frosted\nf 1 2 3\nusemtl polished\nf 1 2 3\n";
+    ImportedFile f = read_obj_mtl(dir.file("m.obj"), true);
+    ASSERT_EQ(f.materials.size(), 4u);
+    EXPECT_EQ(f.materials[0].type, MaterialType::MetallicRoughness);
+    EXPECT_NEAR(f.materials[0].roughness, 0.5f, 1e-6f);  // Blender's default roughness
+    EXPECT_FLOAT_EQ(f.materials[0].specular, 1.0f);       // Ks 0.5: glass's 4 %
+    EXPECT_FLOAT_EQ(f.materials[0].albedo.x, 0.8f);
+    EXPECT_EQ(f.materials[1].type, MaterialType::Conductor);
+    EXPECT_NEAR(f.materials[1].roughness, 0.3f, 1e-6f);
+    EXPECT_FLOAT_EQ(f.materials[1].reflectance.y, 0.8f);
+    EXPECT_EQ(f.materials[2].type, MaterialType::RoughDielectric);
+    EXPECT_FLOAT_EQ(f.materials[2].roughness, 1.0f);
+    EXPECT_FLOAT_EQ(f.materials[2].ior, 1.45f);
+    EXPECT_EQ(f.materials[3].type, MaterialType::Conductor);
+    EXPECT_FLOAT_EQ(f.materials[3].roughness, 0.0f);
+    EXPECT_EQ(stand_in(f.materials[3]).type, MaterialType::Mirror);
+    // The plastic is drawn diffuse without a warning (as Blender's default material); the rough
+    // metal and the frosted glass are approximations, and say so.
+    std::string all;
+    for (const std::string& w : f.warnings) all += w + "\n";
+    EXPECT_EQ(all.find("'plastic'"), std::string::npos) << all;
+    EXPECT_NE(all.find("material 'metal': rough metal (roughness 0.30)"), std::string::npos) << all;
+    EXPECT_NE(all.find("material 'frosted': rough glass (roughness 1.00) is drawn smooth"), std::string::npos) << all;
+    EXPECT_EQ(all.find("'polished'"), std::string::npos) << all;
+}
+
+// A scene file's own GGX materials render through their stand-ins; the program warns once
+// for each that a shape uses and that loses something (the rough metal), and for no other.
+TEST(MaterialMapping, SceneFileGgxMaterialsWarnOnlyWhereApproximated) {
+    TempDir dir;
+    std::ofstream(dir.file("s.json")) << R"({"camera": {"position": [0, 1, 3], "look_at": [0, 1, 0], "width": 8, "height": 8},
+      "materials": {"brushed": {"type": "conductor", "reflectance": [0.9, 0.6, 0.5], "roughness": 0.3},
+                    "polished": {"type": "conductor", "eta": [0.2, 0.9, 1.1], "k": [3.9, 2.4, 2.1], "roughness": 0.05},
+                    "plastic": {"type": "metallic_roughness", "base_color": [0.8, 0.1, 0.1]},
+                    "unused": {"type": "rough_dielectric", "roughness": 0.5}},
+      "shapes": [{"type": "quad", "corner": [-1, 0, 1], "edge1": [2, 0, 0], "edge2": [0, 0, -2], "material": "brushed"},
+                 {"type": "sphere", "center": [0, 0.5, 0], "radius": 0.3, "material": "plastic"},
+                 {"type": "sphere", "center": [0.6, 0.5, 0], "radius": 0.2, "material": "polished"}],
+      "lights": [{"type": "point", "position": [0, 1.5, 0], "power": [10, 10, 10]}],
+      "time": {"frames": 2}, "render": {"passes": 1, "photons_per_pass": 1000}})";
+    ProgramResult r = run_program({"render", dir.file("s.json"), "--no-progress", "-o", dir.file("out.mp4")});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    size_t warnings = 0;
+    for (size_t at = r.err.find("warning:"); at != std::string::npos; at = r.err.find("warning:", at + 1)) ++warnings;
+    EXPECT_EQ(warnings, 1u) << r.err;
+    EXPECT_NE(r.err.find("warning: " + dir.file("s.json") + ": material 'brushed': rough metal (roughness 0.30)"),
+              std::string::npos) << r.err;
 }
 
 TEST(MaterialMapping, WrapModesAndBilinear) {
