@@ -25,5 +25,7 @@ inline constexpr double kMaxEmission = 1e30;
 inline constexpr double kMinSpotConeDeg = 0.1;
 // A sun's angular diameter: a wider "sun" is an area light, not a directional one.
 inline constexpr double kMaxSunAngleDeg = 45;
+// A texture file, as stored (compressed): larger is not an image anyone paints.
+inline constexpr uint64_t kMaxTextureFileBytes = uint64_t(1) << 30;
 
 }  // namespace sl::limits

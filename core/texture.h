@@ -14,6 +14,7 @@ struct TextureImage {
     std::vector<float> rgb;  // 3 per texel, linear
     Vec3 mean;               // average texel: an emitter's power uses it
     TextureWrap wrap_s = TextureWrap::Repeat, wrap_t = TextureWrap::Repeat;
+    uint64_t replaced = 0;  // channel values read as NaN, infinite or negative, drawn as 0
 
     uint64_t bytes() const { return rgb.capacity() * sizeof(float); }
 

@@ -4,6 +4,8 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "config/input_file.h"
+#include "config/limits.h"
 #include "core/plugin.h"
 #include "foundation/errors.h"
 
@@ -45,7 +47,10 @@ std::shared_ptr<TextureImage> decode(const std::string& path, const unsigned cha
     double sum[3] = {0, 0, 0};
     for (size_t i = 0; i < n; ++i) {
         float& c = tex->rgb[i];
-        if (!std::isfinite(c) || c < 0) c = 0;  // textures scale albedo and emission: never negative
+        if (!std::isfinite(c) || c < 0) {  // textures scale albedo and emission: never negative
+            c = 0;
+            ++tex->replaced;
+        }
         if (srgb && !is_float) c = srgb_to_linear(c);
         sum[i % 3] += c;
     }
@@ -58,8 +63,8 @@ std::shared_ptr<TextureImage> decode(const std::string& path, const unsigned cha
 }  // namespace
 
 std::shared_ptr<TextureImage> load_texture_file(const std::string& path, bool srgb) {
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path + ": texture file not found");
+    // The guard before the image library opens it (it opens files by name): a FIFO would block.
+    check_input_file(path, limits::kMaxTextureFileBytes, path, "texture");
     return decode(path, nullptr, 0, path, srgb);
 }
 

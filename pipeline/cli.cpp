@@ -10,6 +10,7 @@
 
 #include "config/command_line.h"
 #include "foundation/errors.h"
+#include "foundation/message_lines.h"
 #include "pipeline/distributed/mpi_launch.h"
 #include "pipeline/distributed/rank_start.h"
 #include "pipeline/interrupts.h"
@@ -29,7 +30,7 @@ int run_cli(int argc, char** argv) {
     // Under an MPI launcher with several processes: MPI, through its plugin (else nothing).
     DistributedStart dist = start_distributed(argc, argv);
     if (!dist.error.empty()) {
-        if (dist.report_error) std::fprintf(stderr, "error: %s\n", dist.error.c_str());
+        if (dist.report_error) std::fprintf(stderr, "%s\n", message_line("error: ", dist.error).c_str());
         return 1;
     }
     const RankSetup ranks{dist.exchange.get(), dist.concurrent_channels};
@@ -39,11 +40,11 @@ int run_cli(int argc, char** argv) {
     // render starts (rank 0 prints it), and after that the failing rank ends the job.
     auto fail = [&](int code, const std::string& message) -> int {
         if (!ranks.ex) {
-            std::fprintf(stderr, "error: %s\n", message.c_str());
+            std::fprintf(stderr, "%s\n", message_line("error: ", message).c_str());
             return code;
         }
         if (!have_ranks_started()) return agree_to_start(*ranks.ex, code, message);
-        std::fprintf(stderr, "error: rank %d: %s\n", ranks.ex->rank(), message.c_str());
+        std::fprintf(stderr, "%s\n", message_line(("error: rank " + std::to_string(ranks.ex->rank()) + ": ").c_str(), message).c_str());
         ranks.ex->abort(code);
         return code;  // not reached: abort ends the process
     };

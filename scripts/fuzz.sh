@@ -2,6 +2,7 @@
 # Fuzzes the readers of untrusted files with libFuzzer under AddressSanitizer and
 # UndefinedBehaviorSanitizer, each for a bounded time (default 60 s per target):
 #   bash scripts/fuzz.sh [SECONDS]
+# Dictionaries (fuzz/dict/NAME.dict) give the fuzzer the keys and numbers that reach the checks.
 # Targets (fuzz/fuzz_NAME.cpp): scene (scene JSON and the command line), obj (OBJ meshes and
 # .mtl), gltf (binary glTF), resume_exr (EXR frames read back by --resume). Seeds are in build-fuzz/corpus/NAME/,
 # findings in build-fuzz/findings/. A new target: its file, a line in CMakeLists.txt, and its
@@ -48,9 +49,34 @@ out = struct.pack("<III", 0x46546C67, 2, 12 + 8 + len(js) + 8 + len(binary))
 out += struct.pack("<II", len(js), 0x4E4F534A) + js + struct.pack("<II", len(binary), 0x004E4942) + binary
 open(sys.argv[1], "wb").write(out)
 PY
+# Seeds that reach mtllib (several names, several lines) and the glTF reader's node and camera checks.
+printf 'mtllib a.mtl b.mtl\nmtllib c.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl m\nf 1 2 3\n' > build-fuzz/corpus/obj/mtllib.obj
+python3 - build-fuzz/corpus/gltf/nodes.glb build-fuzz/corpus/gltf/tri.glb <<'PY'
+import json, struct, sys
+data = open(sys.argv[2], "rb").read()
+n = struct.unpack_from("<I", data, 12)[0]
+gl = json.loads(data[20:20 + n])
+gl["scenes"] = [{"nodes": [0, 1, 2]}]
+gl["nodes"] = [{"mesh": 0, "rotation": [0, 0, 0.7071, 0.7071], "children": [3]},
+               {"camera": 0, "translation": [0, 0, 3]},
+               {"extensions": {"KHR_lights_punctual": {"light": 0}}, "matrix": [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 1, 0, 1]},
+               {"mesh": 0, "scale": [2, 2, 2]}]
+gl["cameras"] = [{"type": "perspective", "perspective": {"yfov": 0.7, "znear": 0.1, "aspectRatio": 1.5}}]
+gl["extensionsUsed"] = ["KHR_lights_punctual"]
+gl["extensions"] = {"KHR_lights_punctual": {"lights": [{"type": "spot", "intensity": 10,
+                    "spot": {"innerConeAngle": 0.2, "outerConeAngle": 0.4}}]}}
+gl["bufferViews"][0]["byteStride"] = 12
+js = json.dumps(gl).encode()
+js += b" " * (-len(js) % 4)
+binary = data[20 + n + 8:]
+out = struct.pack("<III", 0x46546C67, 2, 12 + 8 + len(js) + 8 + len(binary))
+out += struct.pack("<II", len(js), 0x4E4F534A) + js + struct.pack("<II", len(binary), 0x004E4942) + binary
+open(sys.argv[1], "wb").write(out)
+PY
 export FUZZ_SEED_DIR=build-fuzz/corpus/resume_exr  # fuzz_resume_exr writes a valid frame there
 for t in "${targets[@]}"; do
   echo "fuzz: $t for $seconds s" >&2
-  "./build-fuzz/fuzz_$t" -max_total_time="$seconds" -max_len=65536 -timeout=10 -rss_limit_mb=2048 \
+  dict=(); [[ -f fuzz/dict/$t.dict ]] && dict=(-dict="fuzz/dict/$t.dict")
+  "./build-fuzz/fuzz_$t" "${dict[@]}" -max_total_time="$seconds" -max_len=65536 -timeout=10 -rss_limit_mb=2048 \
       -artifact_prefix=build-fuzz/findings/ -print_final_stats=1 "build-fuzz/corpus/$t" 2>&1 | tail -n 12
 done

@@ -16,6 +16,7 @@
 #include "config/limits.h"
 #include "foundation/constants.h"
 #include "foundation/errors.h"
+#include "core/import/gltf_files.h"
 #include "core/import/imported_file.h"
 #include "core/material_stand_in.h"
 #include "core/import/light_mapping.h"
@@ -24,6 +25,8 @@ namespace sl {
 namespace fs = std::filesystem;
 
 namespace {
+
+constexpr uintmax_t kMaxModelBytes = uintmax_t(2) << 30;  // a .gltf/.glb, and each file it names
 
 using Mat4 = std::array<double, 16>;  // column-major, as glTF stores it
 
@@ -162,7 +165,7 @@ int64_t too_deep_at(std::FILE* f, uint64_t length) {
 class GltfReader {
 public:
     GltfReader(const std::string& path, bool use_materials, LightUnits units)
-        : path_(path), use_materials_(use_materials), units_(units) {}
+        : path_(path), use_materials_(use_materials), units_(units), files_(path, kMaxModelBytes) {}
 
     ImportedFile read() {
         load();
@@ -210,12 +213,13 @@ private:
     void load() {
         tinygltf::TinyGLTF loader;
         loader.SetImageLoader(keep_encoded, &model_);  // model_ is the model being loaded
+        loader.SetFsCallbacks(files_.callbacks());
         std::string err, warn;
         std::error_code ec;
         if (!fs::is_regular_file(path_, ec)) fail("not found or not a regular file");
         auto size = fs::file_size(path_, ec);
         if (ec || size == 0) fail("is empty or unreadable");
-        if (size > (uintmax_t(2) << 30)) fail("is larger than 2 GiB");
+        if (size > kMaxModelBytes) fail("is larger than 2 GiB");
         std::string ext = fs::path(path_).extension().string();
         for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
         char magic[4] = {};
@@ -230,8 +234,9 @@ private:
         check_json_depth(binary, size);
         bool ok = false;
         try {
-            ok = binary ? loader.LoadBinaryFromFile(&model_, &err, &warn, path_)
-                        : loader.LoadASCIIFromFile(&model_, &err, &warn, path_);
+            const std::string& abs = files_.absolute_model_path();
+            ok = binary ? loader.LoadBinaryFromFile(&model_, &err, &warn, abs)
+                        : loader.LoadASCIIFromFile(&model_, &err, &warn, abs);
         } catch (const std::out_of_range&) {
             // tinygltf reads some parts with at(): a binary file whose first buffer claims 0 bytes
             // (found by fuzzing) throws instead of returning an error.
@@ -239,6 +244,7 @@ private:
         } catch (const std::exception& e) {
             fail(std::string("cannot be parsed as glTF (") + e.what() + ")");
         }
+        if (!ok && !files_.failure().empty()) fail(files_.failure());  // a file it names, in our words
         if (!ok) {
             std::string msg = err.empty() ? "cannot be parsed as glTF" : err;
             for (char& c : msg) if (c == '\n' || c == '\r') c = ' ';
@@ -312,6 +318,8 @@ private:
         const bool external = !img.uri.empty() && img.uri.rfind("data:", 0) != 0;
         std::string name = external ? (fs::path(path_).parent_path() / img.uri).lexically_normal().string()
                                     : path_ + "#image" + std::to_string(t.source);
+        if (img.image.empty() && external && !files_.failure_of(name).empty())
+            fail("image " + std::to_string(t.source) + ": " + files_.failure_of(name));
         if (img.image.empty())
             fail("image " + std::to_string(t.source) + (external ? " (" + name + ")" : std::string()) +
                  " could not be loaded" + (external ? ": file missing or unreadable" : ""));
@@ -486,6 +494,7 @@ private:
         if (node < 0 || static_cast<size_t>(node) >= model_.nodes.size()) fail("node " + std::to_string(node) + " does not exist");
         if (depth > 256) fail("the node hierarchy is deeper than 256 levels (a cycle?)");
         const tinygltf::Node& n = model_.nodes[static_cast<size_t>(node)];
+        check_transform(n, node);
         const Mat4 m = mul(parent, local_matrix(n));
         if (n.mesh >= 0) {
             if (static_cast<size_t>(n.mesh) >= model_.meshes.size()) fail("node " + std::to_string(node) + ": mesh " + std::to_string(n.mesh) + " does not exist");
@@ -499,6 +508,24 @@ private:
             light(model_.lights[static_cast<size_t>(li)], li, m);
         }
         for (int c : n.children) visit(c, m, depth + 1);
+    }
+
+    // A node's numbers: finite, and a rotation that is a rotation (a zero quaternion is none).
+    void check_transform(const tinygltf::Node& n, int node) const {
+        auto finite = [&](const std::vector<double>& v, const char* what) {
+            for (double x : v)
+                if (!std::isfinite(x) || std::fabs(x) > limits::kMaxLength)
+                    fail("node " + std::to_string(node) + ": its " + what + " holds a number that is not finite or beyond 1e9");
+        };
+        finite(n.matrix, "matrix");
+        finite(n.translation, "translation");
+        finite(n.rotation, "rotation");
+        finite(n.scale, "scale");
+        if (n.rotation.size() == 4) {
+            double l2 = 0;
+            for (double x : n.rotation) l2 += x * x;
+            if (!(l2 > 1e-12)) fail("node " + std::to_string(node) + ": its rotation is a zero quaternion (no rotation at all)");
+        }
     }
 
     void add_mesh(const tinygltf::Mesh& mesh, int mesh_index, const Mat4& m) {
@@ -647,11 +674,19 @@ private:
         cam.look_at = cam.position + normalize(fwd);
         cam.up = normalize(up);
         if (c.type == "perspective") {
-            double yfov = c.perspective.yfov * 180.0 / kPiDouble;
-            if (yfov > 0 && yfov < 180) cam.vfov_deg = static_cast<float>(yfov);
-            if (c.perspective.aspectRatio > 0) {
+            const std::string which = "camera " + std::to_string(index);
+            const double yfov = c.perspective.yfov * 180.0 / kPiDouble;
+            if (!(yfov > 0.01 && yfov < 179))
+                fail(which + ": yfov " + std::to_string(c.perspective.yfov) + " is not an angle between 0 and pi radians");
+            cam.vfov_deg = static_cast<float>(yfov);
+            const double aspect = c.perspective.aspectRatio;
+            if (aspect != 0) {  // (0: absent, the spec's "use the viewport's")
+                // 256 pixels high; the width must stay an image side we can render.
+                if (!std::isfinite(aspect) || !(aspect * 256 >= 1) || !(aspect * 256 <= limits::kMaxImageSide))
+                    fail(which + ": aspectRatio " + std::to_string(aspect) + " is not between 1/256 and " +
+                         std::to_string(limits::kMaxImageSide / 256) + " (256 pixels high)");
                 cam.height = 256;
-                cam.width = std::max(1, static_cast<int>(std::lround(256 * c.perspective.aspectRatio)));
+                cam.width = static_cast<int>(std::lround(256 * aspect));
             }
         } else {
             warn("camera " + std::to_string(index) + " is orthographic: drawn as a 40 degree perspective camera");
@@ -688,6 +723,7 @@ private:
     std::string path_;
     bool use_materials_;
     LightUnits units_;
+    GltfFiles files_;  // the files the model names: from its folder only, through the guard
     tinygltf::Model model_;
     ImportedFile out_;
     std::vector<bool> material_used_;

@@ -41,6 +41,8 @@ std::optional<LightDesc> map_punctual_light(const PunctualLight& l, LightUnits u
     } else if (l.type == "spot") {
         Vec3 dir = l.direction;
         if (!(length(dir) > 0)) { warning = label(l) + ": no direction (left out)"; return std::nullopt; }
+        if (!std::isfinite(l.inner_cone) || !std::isfinite(l.outer_cone))
+            { warning = label(l) + ": cone angles not finite (left out)"; return std::nullopt; }
         d.type = LightType::Spot;
         d.direction = normalize(dir);
         double outer = std::clamp(l.outer_cone, 1e-3, kPiDouble / 2);
@@ -50,7 +52,11 @@ std::optional<LightDesc> map_punctual_light(const PunctualLight& l, LightUnits u
         // The same intensity inside a hard cone: power = I 2 pi (1 - cos cone).
         double half = 0.5 * cone;
         d.power = intensity * static_cast<float>(2 * kPiDouble * 2 * std::sin(half) * std::sin(half));
-        if (outer - inner > 1e-3)
+        if (l.inner_cone > outer)
+            warning = label(l) + ": its inner cone (" + std::to_string(l.inner_cone * 180 / kPiDouble).substr(0, 5) +
+                      " deg) is wider than its outer cone (" + std::to_string(outer * 180 / kPiDouble).substr(0, 5) +
+                      " deg): drawn as a hard cone of the outer angle";
+        else if (outer - inner > 1e-3)
             warning = label(l) + ": the falloff from the inner (" + std::to_string(inner * 180 / kPiDouble).substr(0, 5) +
                       " deg) to the outer cone (" + std::to_string(outer * 180 / kPiDouble).substr(0, 5) +
                       " deg) is drawn as a hard cone of " + std::to_string(d.cone_deg).substr(0, 5) + " deg";

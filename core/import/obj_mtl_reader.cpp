@@ -12,6 +12,7 @@
 #include <unordered_map>
 
 #include "config/limits.h"
+#include "config/input_file.h"
 #include "foundation/errors.h"
 #include "core/import/imported_file.h"
 #include "core/material_stand_in.h"
@@ -23,18 +24,10 @@ namespace {
 
 constexpr uintmax_t kMaxTextBytes = uintmax_t(1) << 30;
 
+// Through the regular-file and size guard: a FIFO, a device or a directory is named as what it
+// is (not "missing"), and nothing is opened before the checks.
 std::string read_text(const std::string& path, const std::string& what) {
-    std::error_code ec;
-    if (!fs::is_regular_file(path, ec)) throw InputError(path + ": " + what + " not found or not a regular file");
-    uintmax_t size = fs::file_size(path, ec);
-    if (ec) throw InputError(path + ": cannot read the " + what);
-    if (size > kMaxTextBytes) throw InputError(path + ": the " + what + " is larger than 1024 MiB");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(path + ": cannot open the " + what);
-    std::string text(static_cast<size_t>(size), '\0');
-    in.read(text.data(), static_cast<std::streamsize>(size));
-    if (static_cast<uintmax_t>(in.gcount()) != size) throw InputError(path + ": cannot read the " + what);
-    return text;
+    return read_input_file(path, kMaxTextBytes, path, what);
 }
 
 // Splits a line into whitespace-separated tokens (views into the line).
@@ -124,8 +117,11 @@ std::string texture_path(const LineReader& lr, const std::vector<std::string_vie
     fs::path p(std::string(t.back()));
     if (p.is_relative()) p = dir / p;
     p = p.lexically_normal();
-    std::error_code ec;
-    if (!fs::is_regular_file(p, ec)) lr.fail(std::string(t[0]) + " names a missing texture file");
+    try {
+        check_input_file(p.string(), limits::kMaxTextureFileBytes, p.string(), "texture");
+    } catch (const InputError& e) {
+        lr.fail(std::string(t[0]) + " names " + e.what());
+    }
     return p.string();
 }
 

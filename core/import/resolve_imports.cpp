@@ -6,6 +6,7 @@
 #include <set>
 
 #include "foundation/errors.h"
+#include "foundation/message_lines.h"
 #include "core/import/imported_file.h"
 #include "core/material_stand_in.h"
 #include "core/placement.h"
@@ -63,8 +64,8 @@ void resolve_imports(SceneDesc& scene) {
         if (!is_import(s) || s.mesh) continue;
         ImportedFile f = read_file(s, scene.source);
         const Placement place{s};
-        for (const std::string& w : f.warnings)
-            if (warned.insert(w).second) std::fprintf(stderr, "warning: %s\n", w.c_str());
+        for (const std::string& w : counted_lines(f.warnings))
+            if (warned.insert(w).second) std::fprintf(stderr, "%s\n", message_line("warning: ", w).c_str());
         // Materials: the entry's own for every triangle, or the file's (with their textures).
         std::vector<int> material_map(f.materials.size(), s.material);
         if (s.material < 0) {
@@ -79,6 +80,11 @@ void resolve_imports(SceneDesc& scene) {
                 TextureDesc d = it.desc;
                 auto img = it.bytes.empty() ? load_texture_file(d.file, d.srgb)
                                             : load_texture_memory(it.bytes, d.file, it.format, d.srgb);
+                if (img->replaced > 0)  // said once per texture, with how many
+                    std::fprintf(stderr, "%s\n",
+                                 message_line("warning: ", d.file + ": " + std::to_string(img->replaced) +
+                                                               " texel values are NaN, infinite or negative: drawn as 0")
+                                     .c_str());
                 img->wrap_s = d.wrap_s;
                 img->wrap_t = d.wrap_t;
                 d.image = std::move(img);

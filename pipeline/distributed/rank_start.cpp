@@ -1,5 +1,7 @@
 #include "pipeline/distributed/rank_start.h"
 
+#include "foundation/message_lines.h"
+
 #include <cstdio>
 #include <cstring>
 
@@ -18,7 +20,7 @@ int agree_to_start(RankExchange& ex, int status, const std::string& error) {
             int s = 0;
             std::memcpy(&s, at, sizeof(int));
             if (s != 0) {
-                std::fprintf(stderr, "error: %s\n", std::string(at + sizeof(int), n - sizeof(int)).c_str());
+                std::fprintf(stderr, "%s\n", message_line("error: ", std::string(at + sizeof(int), n - sizeof(int))).c_str());
                 break;
             }
             at += n;

@@ -165,6 +165,12 @@ void make_fixtures(const std::string& dir) {
     gltf("light_1e38.gltf", R"({"extensionsUsed": ["KHR_lights_punctual"], "scenes": [{"nodes": [0, 1]}],
         "nodes": [{"mesh": 0}, {"extensions": {"KHR_lights_punctual": {"light": 0}}}],
         "extensions": {"KHR_lights_punctual": {"lights": [{"type": "point", "name": "flash", "intensity": 1e38}]}}})");
+    mkfifo((dir + "/fixtures/fifo.bin").c_str(), 0644);
+    gltf("buffer_fifo.gltf", R"({"buffers": [{"uri": "fifo.bin", "byteLength": 72}]})");
+    gltf("buffer_absolute.gltf", R"({"buffers": [{"uri": "/etc/passwd", "byteLength": 72}]})");
+    gltf("zero_quaternion.gltf", R"({"nodes": [{"mesh": 0, "rotation": [0, 0, 0, 0]}]})");
+    gltf("aspect_1e12.gltf", R"({"scenes": [{"nodes": [0, 1]}], "nodes": [{"mesh": 0}, {"camera": 0, "translation": [0, 0, 3]}],
+        "cameras": [{"type": "perspective", "perspective": {"yfov": 0.7, "znear": 0.1, "aspectRatio": 1e12}}]})");
     std::string deep = lamp.dump();  // dumped as text: the JSON library would recurse as deep
     deep.insert(1, "\"extras\":" + std::string(100000, '[') + std::string(100000, ']') + ",");
     std::ofstream(dir + "/fixtures/deep.gltf") << deep;
