@@ -14,6 +14,7 @@
 #include "core/rng.h"
 #include "core/specular_path.h"
 #include "core/surface_material.h"
+#include "stages/render/single_scatter.h"
 
 namespace sl {
 
@@ -43,11 +44,16 @@ struct PixelTracer {
     int pass;
     const HomogeneousMedium* medium;  // null in vacuum
     DepositQueue& deposits;
+    const VolumePhotonMap* volume;    // this pass's volume photons (null in vacuum)
+    int64_t emitted = 0;              // photon paths traced this pass
+    BeamCounters beam{};
+    SingleScatterCounters single{};
     uint64_t rays = 0;
     // The pixel's path, for the estimates at its end.
     VisiblePoint vp{};
     bool has_visible_point = false;
-    PixelSegments segments;
+    bool timed = false;               // count the cycles spent on in-scattering for this pixel
+    uint64_t medium_cycles = 0;       // of this pixel (when timed)
 
     size_t local = 0;  // the pixel's index in the buffer (its own, or its rank's share)
 
@@ -66,14 +72,14 @@ struct PixelTracer {
         int specular = 0;
         float tnear = 0;
         has_visible_point = false;
-        segments.count = 0;
+        medium_cycles = 0;
         const bool tof = settings.camera_tof;
         for (;;) {
             SurfaceHit hit;
             ++rays;
             const bool found = ctx.geometry.intersect(o, d, tnear, 1e30f, hit);
             // Dielectric solids hold no medium: only pieces outside them cross it.
-            if (medium && !inside) cross_medium(pixel, o, d, tnear, found ? hit.t : 1e30f, leg_ns, specular, beta);
+            if (medium && !inside) cross_medium(o, d, tnear, found ? hit.t : 1e30f, leg_ns, specular, beta, rng);
             if (!found) return;
             leg_ns += hit.t * (inside ? inside_ior : 1.0f) / kSpeedOfLight;
             if (hit.light >= 0) {  // an emitter seen directly (or through specular surfaces)
@@ -101,21 +107,32 @@ struct PixelTracer {
         }
     }
 
-    // Records the piece of o + t d, t in (tnear, tfar), inside the medium and attenuates the
-    // path's throughput by its transmittance.
-    void cross_medium(size_t pixel, Vec3 o, Vec3 d, float tnear, float tfar, double leg_ns, int specular, Vec3& beta) {
+    // The piece of o + t d, t in (tnear, tfar), inside the medium: its in-scattering at once
+    // (single scattering by next-event estimation, unless the photons carry it; then the beam
+    // estimate of the volume photons), and the path's throughput attenuated by its transmittance.
+    // Every piece gathers, however many specular bounces came before it.
+    void cross_medium(Vec3 o, Vec3 d, float tnear, float tfar, double leg_ns, int specular, Vec3& beta, Rng& rng) {
         float t0, t1;
         if (!medium->clip(o, d, tnear, tfar, t0, t1)) return;
-        if (segments.count < PixelSegments::kCapacity) {
-            CameraSegment& s = segments.segment[segments.count++];
-            s.origin = o + d * t0;
-            s.dir = d;
-            s.length = t1 - t0;
-            s.beta = beta;
-            s.depth_left = static_cast<uint32_t>(ctx.render.max_depth - specular);
-            s.camera_ns = leg_ns + t0 / kSpeedOfLight;
+        const uint64_t c0 = timed ? cycle_clock() : 0;
+        CameraSegment s;
+        s.origin = o + d * t0;
+        s.dir = d;
+        s.length = t1 - t0;
+        s.beta = beta;
+        s.depth_left = static_cast<uint32_t>(ctx.render.max_depth - specular);
+        s.camera_ns = leg_ns + t0 / kSpeedOfLight;
+        if (!ctx.single_scatter_by_photons) {
+            const uint64_t before = single.shadow_rays;
+            single_scatter_along(ctx, s, rng, buffer, deposits, local, single);
+            rays += single.shadow_rays - before;
+        }
+        if (volume) {
+            deposits.drain();  // the beam estimate adds to the pixel's slots directly
+            gather_volume_at(ctx, s, *volume, emitted, local, buffer, beam);
         }
         beta *= medium->transmittance(t1 - t0);
+        if (timed) medium_cycles += cycle_clock() - c0;
     }
 
     // nf: the geometric normal facing the path (ray offsets, side tests); ns: the shading
@@ -174,34 +191,30 @@ CameraPassTimes camera_pass(const RenderContext& ctx, int pass, const PassPhoton
         tbb::blocked_range<size_t>(0, buffer.radius2.size(), 256), Work{},  // this rank's pixels
         [&](const tbb::blocked_range<size_t>& r, Work w) {
             DepositQueue deposits;  // drained when it goes out of scope, at the range's end
-            PixelTracer tracer{ctx, buffer, pass, medium, deposits, 0, {}, false, {}};
-            BeamCounters beam;
+            PixelTracer tracer{ctx, buffer, pass, medium, deposits, volume, photons.emitted};
             const PixelShare share = buffer.share;
             for (size_t p = r.begin(); p != r.end(); ++p) {
                 // The split between the parts is sampled on one pixel in kTimedEvery: reading
                 // the clock four times a pixel cost as much as a sixth of the pass.
                 const bool timed = p % kTimedEvery == 0;
+                tracer.timed = timed;
                 const uint64_t c0 = timed ? cycle_clock() : 0;
                 tracer.trace(share.global(p), p);
                 const uint64_t c1 = timed ? cycle_clock() : 0;
-                if (volume && tracer.segments.count > 0) {
-                    deposits.drain();  // the beam estimate adds to the pixel's slots directly
-                    gather_volume_at(ctx, tracer.segments, *volume, photons.emitted, p, buffer, beam);
-                }
-                const uint64_t c2 = timed ? cycle_clock() : 0;
                 if (tracer.has_visible_point)
                     gather_surface_at(ctx, tracer.vp, photons.surface, photons.emitted, p, buffer, deposits);
                 w.max_r2 = std::max(w.max_r2, buffer.radius2[p]);
                 if (timed) {
-                    const uint64_t c3 = cycle_clock();
-                    w.camera_paths += c1 - c0;
-                    w.volume += c2 - c1;
-                    w.gather += c3 - c2;
+                    const uint64_t c2 = cycle_clock();
+                    w.camera_paths += c1 - c0 - tracer.medium_cycles;
+                    w.volume += tracer.medium_cycles;
+                    w.gather += c2 - c1;
                 }
             }
             counters.rays.fetch_add(tracer.rays, std::memory_order_relaxed);
-            counters.beam_segments.fetch_add(beam.segments, std::memory_order_relaxed);
-            counters.beam_hits.fetch_add(beam.photon_hits, std::memory_order_relaxed);
+            counters.beam_segments.fetch_add(tracer.beam.segments, std::memory_order_relaxed);
+            counters.beam_hits.fetch_add(tracer.beam.photon_hits, std::memory_order_relaxed);
+            counters.single_scatter_samples.fetch_add(tracer.single.samples, std::memory_order_relaxed);
             return w;
         },
         [](Work a, const Work& b) {

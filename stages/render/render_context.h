@@ -33,6 +33,11 @@ struct RenderContext {
     // of some volume): without it every stage runs its vacuum code and allocates nothing.
     std::optional<HomogeneousMedium> medium;
     float volume_radius = 0;     // initial radius of the beam estimate (meters), with a medium
+    // false (always, for the program): the camera pass computes single scattering in the medium
+    // by next-event estimation and volume photons of depth 1 are not stored (but lasers').
+    // true: the estimator before it, every volume photon stored and the camera pass sampling
+    // no light in the medium; kept only so that tests can compare the two (not a scene key).
+    bool single_scatter_by_photons = false;
     int width = 0, height = 0;
     // The other processes rendering this image with this one (MPI ranks); null: this one alone.
     RankExchange* exchange = nullptr;
