@@ -211,6 +211,14 @@ bool LightSet::sample_in_medium(size_t i, float u1, float u2, InScatterLight& ou
         out.position = l.desc.corner + l.desc.edge1 * u1 + l.desc.edge2 * u2;
         out.axis = l.normal;
         out.emission = l.desc.radiance * l.area;
+        // Edges at right angles (a rectangle): sampled by solid angle at each distance sample.
+        if (std::abs(dot(l.desc.edge1, l.desc.edge2)) <= 1e-5f * length(l.desc.edge1) * length(l.desc.edge2)) {
+            out.rect = true;
+            out.corner = l.desc.corner;
+            out.edge1 = l.desc.edge1;
+            out.edge2 = l.desc.edge2;
+            out.radiance = l.desc.radiance;
+        }
         return true;
     case LightType::Sun: {
         if (is_black(l.power)) return false;

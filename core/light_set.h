@@ -9,6 +9,7 @@
 #include "config/scene_desc.h"
 #include "core/emissive_triangles.h"
 #include "core/rng.h"
+#include "core/spherical_rectangle.h"
 #include "core/sun_light.h"
 
 namespace sl {
@@ -43,8 +44,28 @@ struct InScatterLight {
     float sun_lead = 0;  // sun: the rectangle's distance before the wavefront's t = 0 plane
     double sun_h0 = 0;   // sun: dot(x, axis) of the wavefront at t = 0
     double start_ns = 0;  // when the light leaves its point (a sun: -lead / (cos c))
+    // A quad with edges at right angles: evaluated by a fresh point per distance sample, uniform
+    // in the solid angle it subtends there (at_rect), not by `position`, which then only maps
+    // the segment's arrival times.
+    bool rect = false;
+    Vec3 corner, edge1, edge2, radiance;
 
     bool point_like() const { return kind != Kind::Sun; }
+    // The rect's light at x: L * Omega (the radiance over the solid-angle density, in place of the
+    // irradiance), the unit direction to the sampled point and its distance; false behind it.
+    bool at_rect(Vec3 x, float u, float v, Vec3& irradiance, Vec3& to_light, float& distance) const {
+        if (!(dot(axis, x - corner) > 0)) return false;  // one-sided: x behind the quad
+        const SphericalRectangle sr(x, corner, edge1, edge2);
+        if (!(sr.solid_angle > 1e-9f)) return false;
+        const Vec3 v2 = sr.sample(u, v) - x;
+        const float d2 = dot(v2, v2);
+        if (!(d2 > 0)) return false;
+        distance = std::sqrt(d2);
+        to_light = v2 / distance;
+        if (!(-dot(axis, to_light) > 0)) return false;
+        irradiance = radiance * sr.solid_angle;
+        return true;
+    }
     // The irradiance at x on a plane facing the light (W/m^2), the unit direction towards it and
     // the shadow ray's length; false when none of this sample's light reaches x.
     bool at(Vec3 x, Vec3& irradiance, Vec3& to_light, float& distance) const {

@@ -10,6 +10,8 @@ namespace {
 
 constexpr double kInvC = 1.0 / kSpeedOfLight;
 constexpr double kGolden = 0.6180339887498949;  // strata's uniforms: u + k phi (mod 1)
+constexpr double kGolden2 = 0.7548776662466927;  // a quad's point: u4 + k phi2, u5 + k phi3
+constexpr double kGolden3 = 0.5698402909980532;
 // The closest a camera line is taken to pass by a light's point: a line through it would see
 // an infinite integral (1/h); below 0.1 mm the pixel's average is dominated by the rest of it.
 constexpr double kMinPassBy = 1e-4;
@@ -70,7 +72,8 @@ void single_scatter_along(const RenderContext& ctx, const CameraSegment& sg, Rng
     const Vec3 o = sg.origin, d = sg.dir;
 
     for (size_t i = 0; i < ctx.lights.count(); ++i) {
-        const float u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform();
+        const float u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform(), u4 = rng.uniform(),
+                    u5 = rng.uniform();
         if (!(S > 0)) continue;
         InScatterLight ls;
         if (!ctx.lights.sample_in_medium(i, u1, u2, ls)) continue;
@@ -133,7 +136,7 @@ void single_scatter_along(const RenderContext& ctx, const CameraSegment& sg, Rng
                 const int64_t jk0 = k < 0 ? j_lo - 1 : (k == n_groups ? j_end : j_lo + k * g);
                 const int64_t jk1 = k < 0 ? j_lo : (k == n_groups ? j_end + 1 : std::min(j_lo + (k + 1) * g, j_end));
                 int slot = -1;
-                if (jk1 - jk0 == 1) {  // one bucket (or before/after): its slot, known before sampling
+                if (jk1 - jk0 == 1 && !ls.rect) {  // one bucket (or before/after): its slot, known before sampling
                     slot = layout.slot_of_bucket(jk0);
                     if (slot < 0) continue;
                 }
@@ -172,15 +175,29 @@ void single_scatter_along(const RenderContext& ctx, const CameraSegment& sg, Rng
                     pdf = 1 / len;
                 }
                 if (!(pdf > 0) || !std::isfinite(pdf)) continue;
-                if (slot < 0) {  // a group of buckets: the bucket of the sample's own time, kept inside the group
-                    const int64_t j = std::clamp<int64_t>(bucket(curve.at(t)), jk0, jk1 - 1);
-                    slot = layout.slot_of_bucket(j);
-                    if (slot < 0) continue;
-                }
                 const Vec3 x = o + d * static_cast<float>(t);
                 Vec3 e, to_light;
                 float dist = 0;
-                if (!ls.at(x, e, to_light, dist)) continue;
+                if (ls.rect) {
+                    // A fresh point of the quad, by solid angle: its light arrives at its own time,
+                    // within the quad's size over c of the stratum's.
+                    // (two more uniforms, independent of the distance's)
+                    double a = u4 + kGolden2 * static_cast<double>(k + 2) + (pz.side > 0 ? 0.5 : 0.0);
+                    double b = u5 + kGolden3 * static_cast<double>(k + 2) + (pz.side > 0 ? 0.5 : 0.0);
+                    a -= std::floor(a);
+                    b -= std::floor(b);
+                    if (!ls.at_rect(x, static_cast<float>(a), static_cast<float>(b), e, to_light, dist)) continue;
+                    const double at = ls.start_ns + dist * kInvC + back_ns + (tof ? t * kInvC : 0.0);
+                    slot = layout.slot_of_bucket(bucket(at));
+                    if (slot < 0) continue;
+                } else {
+                    if (slot < 0) {  // a group of buckets: the bucket of the sample's own time, kept inside the group
+                        const int64_t j = std::clamp<int64_t>(bucket(curve.at(t)), jk0, jk1 - 1);
+                        slot = layout.slot_of_bucket(j);
+                        if (slot < 0) continue;
+                    }
+                    if (!ls.at(x, e, to_light, dist)) continue;
+                }
                 ++counters.samples;
                 const float phase = medium.phase(dot(to_light, d));  // light along -to_light, leaving along -d
                 Vec3 L = sg.beta * sigma_s * medium.transmittance(static_cast<float>(t)) * e *

@@ -10,7 +10,8 @@
 // the sun), with one shadow ray: every frame the light reaches gets its own sample, and frames it
 // cannot reach get nothing. The strata are the whole timeline's, not the section's, and their
 // random numbers come from one uniform per segment and light, so that K sections and MPI ranks
-// deposit into each bucket exactly what one process does.
+// deposit into each bucket exactly what one process does. A rectangular quad light is evaluated
+// at each distance sample by a fresh point uniform in its solid angle (core/spherical_rectangle.h).
 #include <cstdint>
 
 #include "core/rng.h"
@@ -32,7 +33,7 @@ struct SingleScatterCounters {
 inline constexpr int kMaxStrata = 64;
 
 // Adds the single-scattering estimate along `sg` (pixel `pixel`'s throughput sg.beta included)
-// to the pixel's slots through `deposits`. Draws exactly 3 uniforms per light from `rng`.
+// to the pixel's slots through `deposits`. Draws exactly 5 uniforms per light from `rng`.
 void single_scatter_along(const RenderContext& ctx, const CameraSegment& sg, Rng& rng, SectionBuffer& buffer,
                           DepositQueue& deposits, size_t pixel, SingleScatterCounters& counters);
 
