@@ -9,6 +9,9 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include <memory>
+
+#include "core/import/mesh_data.h"
 #include "render_helpers.h"
 #include "single_scatter_reference.h"
 #include "test_medium_scenes.h"
@@ -278,6 +281,51 @@ TEST(SingleScatter, QuadLightInTheHaze) {
     s.render.passes = 64;
     const FrameErrors e = compare(test::render_all(s), want, 0.05);
     print("quad light", e);
+    ASSERT_GE(e.mean_dev.size(), 8u);
+    EXPECT_LT(std::abs(e.mean_dev[0]), 0.05);  // the onset: as for the spot
+    for (size_t k = 1; k < e.mean_dev.size(); ++k) EXPECT_LT(std::abs(e.mean_dev[k]), 0.015) << "lit frame " << k;
+}
+
+// An emissive mesh in the fog (two triangles, emitting from both faces; sampled by power over
+// its triangles, then the distance), above and behind the camera, against the same quadrature.
+TEST(SingleScatter, EmissiveMeshInTheHaze) {
+    SceneDesc s = test::light_in_open_medium(point_light({0, 0, 0}, 1), Vec3(0.05f), Vec3(0.3f), 0.2f, 5, {0, 0, -2},
+                                             {0, 0, 1}, 50, 12);
+    s.lights.clear();
+    MaterialDesc glow;
+    glow.name = "glow";
+    glow.emission = Vec3(20, 12, 6);
+    glow.double_sided = true;
+    s.materials.push_back(glow);
+    auto mesh = std::make_shared<MeshData>();
+    const Vec3 c0{-0.4f, 1.8f, -3.4f}, e1{0.8f, 0, 0}, e2{0, 0, 0.7f};
+    mesh->positions = {c0, c0 + e1, c0 + e1 + e2, c0 + e2};
+    mesh->indices = {0, 1, 2, 0, 2, 3};
+    mesh->tri_material = {1, 1};
+    ShapeDesc shape;
+    shape.type = ShapeType::Mesh;
+    shape.material = 1;
+    shape.mesh = mesh;
+    s.shapes.push_back(shape);
+    s.time = {0, 30, 12, 24};
+    s.render.photons_per_pass = 2000;
+    s.render.passes = 64;
+    const Timeline tl = timeline_of(s);
+    test::QuadratureSetup q = setup_of(s);
+    q.steps = 1500;
+    const int n = 8;
+    const Vec3 normal = normalize(cross(e1, e2));
+    const float piece = length(cross(e1, e2)) / (n * n);
+    test::LightModel model = [&](Vec3 x, const std::function<void(const test::LightContribution&)>& add) {
+        for (int a = 0; a < n; ++a)
+            for (int b = 0; b < n; ++b) {
+                const Vec3 at = c0 + e1 * ((a + 0.5f) / n) + e2 * ((b + 0.5f) / n);
+                test::point_model(at, [&](Vec3 w) { return glow.emission * (piece * std::abs(dot(w, normal))); })(x, add);
+            }
+    };
+    const auto want = test::frames_of(test::single_scatter_buckets(s, tl, q, model), tl, s.emission.mode);
+    const FrameErrors e = compare(test::render_all(s), want, 0.05);
+    print("emissive mesh", e);
     ASSERT_GE(e.mean_dev.size(), 8u);
     EXPECT_LT(std::abs(e.mean_dev[0]), 0.05);  // the onset: as for the spot
     for (size_t k = 1; k < e.mean_dev.size(); ++k) EXPECT_LT(std::abs(e.mean_dev[k]), 0.015) << "lit frame " << k;
