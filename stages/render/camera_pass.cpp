@@ -4,6 +4,7 @@
 #include <tbb/parallel_reduce.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <ctime>
@@ -60,12 +61,15 @@ struct PixelTracer {
     // `pixel`: in the image (it picks the random stream and the ray); `local_pixel`: in the buffer.
     void trace(size_t pixel, size_t local_pixel) {
         local = local_pixel;
+        has_visible_point = false;
+        medium_cycles = 0;
         const RenderDesc& settings = ctx.render;
         Rng rng(settings.seed, 1, static_cast<uint64_t>(pass), pixel);
-        float fx = static_cast<float>(pixel % ctx.width) + rng.uniform();
-        float fy = static_cast<float>(pixel / ctx.width) + rng.uniform();
+        float fx = static_cast<float>(pixel % ctx.width), fy = static_cast<float>(pixel / ctx.width);
+        float weight = 1;
+        if (!jitter(fx, fy, rng, weight)) return;
         Vec3 o = ctx.camera.position(), d = ctx.camera.direction(fx, fy);
-        Vec3 beta(1);
+        Vec3 beta(weight);
         double leg_ns = 0;  // camera leg so far, in ns (light crosses glass at c/n)
         bool inside = false;
         float inside_ior = 1;
@@ -105,6 +109,44 @@ struct PixelTracer {
             tnear = 0;
             if (is_black(beta)) return;
         }
+    }
+
+    // The ray's point in the pixel (x, y): uniform, except in the pixels within kLightImage pixels
+    // of a point light's image in the haze, where a ray passing at h from the light sees
+    // in-scattering ~ 1/h and uniform jitter has a variance that grows without bound
+    // (log(pixel / h)): there, half the rays are drawn with density ~ 1 / (distance to the
+    // light's image) in a disc of kLightImage pixels round it (a ray then passes at h in
+    // proportion), and every contribution is weighted by 1 / (the mixture's density). Rays
+    // drawn outside the pixel count as zero. False: nothing to trace.
+    static constexpr float kLightImage = 1.0f;
+    bool jitter(float& fx, float& fy, Rng& rng, float& weight) const {
+        const float x0 = fx, y0 = fy;
+        const std::array<float, 2>* near = nullptr;
+        for (const std::array<float, 2>& c : ctx.light_images)
+            if (c[0] > x0 - kLightImage && c[0] < x0 + 1 + kLightImage && c[1] > y0 - kLightImage &&
+                c[1] < y0 + 1 + kLightImage) {
+                near = &c;
+                break;
+            }
+        if (!near) {
+            fx = x0 + rng.uniform();
+            fy = y0 + rng.uniform();
+            return true;
+        }
+        if (rng.uniform() < 0.5f) {
+            fx = x0 + rng.uniform();
+            fy = y0 + rng.uniform();
+        } else {
+            const float r = kLightImage * rng.uniform(), phi = 2 * kPi * rng.uniform();
+            fx = (*near)[0] + r * std::cos(phi);
+            fy = (*near)[1] + r * std::sin(phi);
+            if (!(fx >= x0 && fx < x0 + 1 && fy >= y0 && fy < y0 + 1)) return false;
+        }
+        const float dx = fx - (*near)[0], dy = fy - (*near)[1];
+        const float rc = std::sqrt(dx * dx + dy * dy);
+        const float q = rc < kLightImage ? 1 / (2 * kPi * kLightImage * rc) : 0.0f;  // 1/r in the disc
+        weight = 1 / (0.5f + 0.5f * q);
+        return std::isfinite(weight) && weight > 0;
     }
 
     // The piece of o + t d, t in (tnear, tfar), inside the medium: its in-scattering at once

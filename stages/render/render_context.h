@@ -3,6 +3,8 @@
 // time axis and the settings that shape the estimate.
 #include <memory>
 #include <optional>
+#include <array>
+#include <vector>
 
 #include "foundation/constants.h"
 #include "config/scene_desc.h"
@@ -38,6 +40,9 @@ struct RenderContext {
     // true: the estimator before it, every volume photon stored and the camera pass sampling
     // no light in the medium; kept only so that tests can compare the two (not a scene key).
     bool single_scatter_by_photons = false;
+    // Image positions (pixel units) of the point and spot lights inside the medium in front of
+    // the camera: the pixels round them sample their rays towards them (camera_pass.cpp).
+    std::vector<std::array<float, 2>> light_images;
     int width = 0, height = 0;
     // The other processes rendering this image with this one (MPI ranks); null: this one alone.
     RankExchange* exchange = nullptr;

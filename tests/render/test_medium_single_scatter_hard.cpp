@@ -79,7 +79,7 @@ Vec3 last_frame_ratio(const test::Rendered& r, const std::vector<std::vector<Vec
 
 // The light 1 mm in front of the camera, in view: every ray passes within millimetres of it
 // (the in-scattered radiance grows as 1/h). Finite, and no single pixel dominates a frame; two
-// seeds agree on every frame's sum.
+// seeds agree on the image's mean within its noise.
 TEST(SingleScatterHard, LightNextToTheCamera) {
     SceneDesc s = test::light_in_open_medium(point_light({0.0002f, 0.0001f, -2.999f}, 100), Vec3(0.1f), Vec3(0.4f),
                                              0.2f, 5, {0, 0, -3}, {0, 0, 1}, 50, 16);
@@ -95,7 +95,9 @@ TEST(SingleScatterHard, LightNextToTheCamera) {
     std::printf("light 1 mm from the camera: largest pixel share of a frame %.3f, seeds' steady means %+.4f\n", share,
                 test::mean(a.steady) / test::mean(b.steady) - 1);
     EXPECT_LT(share, 0.25);
-    EXPECT_NEAR(test::mean(a.steady) / test::mean(b.steady), 1.0, 0.05);
+    // Every ray passes within millimetres of the light: the image's mean is noisy at 8 passes
+    // (seeds 3-8 spread over 2514-2803, as much with uniform jitter: 2566-2859).
+    EXPECT_NEAR(test::mean(a.steady) / test::mean(b.steady), 1.0, 0.2);
 }
 
 // A camera segment exactly through the light's point (the integral along it is infinite):
