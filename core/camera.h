@@ -25,6 +25,16 @@ public:
         float sy = (1 - 2 * py / height_) * half_h_;
         return normalize(forward_ + right_ * sx + up_ * sy);
     }
+    // Where p appears on the image plane, in pixel units (direction()'s inverse); false when p
+    // is not in front of the camera.
+    bool project(Vec3 p, float& px, float& py) const {
+        const Vec3 v = p - position_;
+        const float z = dot(v, forward_);
+        if (!(z > 0)) return false;
+        px = (dot(v, right_) / (z * half_w_) + 1) * 0.5f * static_cast<float>(width_);
+        py = (1 - dot(v, up_) / (z * half_h_)) * 0.5f * static_cast<float>(height_);
+        return true;
+    }
     // Width of one pixel on a plane facing the camera at distance d.
     float pixel_footprint(float d) const { return 2 * half_h_ * d / height_; }
 

@@ -179,6 +179,62 @@ bool LightSet::sample_direct(size_t i, Vec3 p, Vec3 n, float u1, float u2, Direc
     return true;
 }
 
+bool LightSet::sample_in_medium(size_t i, float u1, float u2, InScatterLight& out) const {
+    using Kind = InScatterLight::Kind;
+    const Light& l = lights_[i];
+    out = InScatterLight{};
+    if (l.mesh) {
+        const EmitterPoint ep = emitters_.sample(u1, u2);
+        if (!(ep.pdf_area > 0)) return false;
+        out.kind = ep.two_sided ? Kind::TwoSided : Kind::OneSided;
+        out.position = ep.position;
+        out.axis = ep.normal;
+        out.emission = ep.radiance * (1 / ep.pdf_area);
+        return true;
+    }
+    switch (l.desc.type) {
+    case LightType::Laser: return false;
+    case LightType::Point:
+        out.kind = Kind::Isotropic;
+        out.position = l.desc.position;
+        out.emission = l.intensity;
+        return true;
+    case LightType::Spot:
+        out.kind = Kind::Spot;
+        out.position = l.desc.position;
+        out.axis = l.desc.direction;
+        out.cos_cone = l.cos_cone;
+        out.emission = l.intensity;
+        return true;
+    case LightType::Quad:
+        out.kind = Kind::OneSided;
+        out.position = l.desc.corner + l.desc.edge1 * u1 + l.desc.edge2 * u2;
+        out.axis = l.normal;
+        out.emission = l.desc.radiance * l.area;
+        // Edges at right angles (a rectangle): sampled by solid angle at each distance sample.
+        if (std::abs(dot(l.desc.edge1, l.desc.edge2)) <= 1e-5f * length(l.desc.edge1) * length(l.desc.edge2)) {
+            out.rect = true;
+            out.corner = l.desc.corner;
+            out.edge1 = l.desc.edge1;
+            out.edge2 = l.desc.edge2;
+            out.radiance = l.desc.radiance;
+        }
+        return true;
+    case LightType::Sun: {
+        if (is_black(l.power)) return false;
+        out.kind = Kind::Sun;
+        l.sun.sample_in_medium(u1, u2, out.travel, out.sun_cos, out.emission);
+        if (!(out.sun_cos > 0)) return false;
+        out.axis = l.sun.direction();
+        out.sun_h0 = l.sun.entry_offset();
+        out.sun_lead = l.sun.lead();
+        out.start_ns = -static_cast<double>(out.sun_lead) / (out.sun_cos * kSpeedOfLight);
+        return true;
+    }
+    }
+    return false;
+}
+
 double LightSet::latest_arrival_ns(size_t i, Vec3 p) const {
     const Light& l = lights_[i];
     if (l.mesh) return std::numeric_limits<double>::infinity();

@@ -1,11 +1,15 @@
 #pragma once
 // The scene's lights: photon emission (a light chosen in proportion to its power) and the
 // direct-light sample that the camera pass evaluates at each visible point.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include "config/scene_desc.h"
 #include "core/emissive_triangles.h"
 #include "core/rng.h"
+#include "core/spherical_rectangle.h"
 #include "core/sun_light.h"
 
 namespace sl {
@@ -24,6 +28,72 @@ struct DirectLightSample {
     double start_ns = 0;  // when the light left the sample's point (a sun: slightly < 0)
 };
 
+// Light i sampled once for a camera segment in the medium (single scattering by next-event
+// estimation in the camera pass): a point on it (point, spot, quad, emissive triangles) or a
+// direction (sun), fixed for the whole segment, so that the arrival time along the segment has
+// a closed form; then evaluated at each distance sample x.
+struct InScatterLight {
+    enum class Kind : uint8_t { Isotropic, Spot, OneSided, TwoSided, Sun };
+    Kind kind = Kind::Isotropic;
+    Vec3 position;      // the light's point (all but the sun)
+    Vec3 axis;          // spot: its direction; one- or two-sided: the emitter's front normal; sun: its axis
+    Vec3 emission;      // point, spot: W/sr; area: L / pdf_area (W/sr per unit cosine); sun: W/m^2 facing it
+    float cos_cone = -1;  // spot
+    Vec3 travel;        // sun: the sampled direction of travel
+    float sun_cos = 1;  // sun: cos(travel, axis)
+    float sun_lead = 0;  // sun: the rectangle's distance before the wavefront's t = 0 plane
+    double sun_h0 = 0;   // sun: dot(x, axis) of the wavefront at t = 0
+    double start_ns = 0;  // when the light leaves its point (a sun: -lead / (cos c))
+    // A quad with edges at right angles: evaluated by a fresh point per distance sample, uniform
+    // in the solid angle it subtends there (at_rect), not by `position`, which then only maps
+    // the segment's arrival times.
+    bool rect = false;
+    Vec3 corner, edge1, edge2, radiance;
+
+    bool point_like() const { return kind != Kind::Sun; }
+    // The rect's light at x: L * Omega (the radiance over the solid-angle density, in place of the
+    // irradiance), the unit direction to the sampled point and its distance; false behind it.
+    bool at_rect(Vec3 x, float u, float v, Vec3& irradiance, Vec3& to_light, float& distance) const {
+        if (!(dot(axis, x - corner) > 0)) return false;  // one-sided: x behind the quad
+        const SphericalRectangle sr(x, corner, edge1, edge2);
+        if (!(sr.solid_angle > 1e-9f)) return false;
+        const Vec3 v2 = sr.sample(u, v) - x;
+        const float d2 = dot(v2, v2);
+        if (!(d2 > 0)) return false;
+        distance = std::sqrt(d2);
+        to_light = v2 / distance;
+        if (!(-dot(axis, to_light) > 0)) return false;
+        irradiance = radiance * sr.solid_angle;
+        return true;
+    }
+    // The irradiance at x on a plane facing the light (W/m^2), the unit direction towards it and
+    // the shadow ray's length; false when none of this sample's light reaches x.
+    bool at(Vec3 x, Vec3& irradiance, Vec3& to_light, float& distance) const {
+        if (kind == Kind::Sun) {
+            const double along = std::max(0.0, static_cast<double>(dot(x, axis)) - sun_h0) + sun_lead;
+            irradiance = emission;
+            to_light = -travel;
+            distance = static_cast<float>(along / sun_cos);
+            return true;
+        }
+        const Vec3 v = position - x;
+        const float d2 = dot(v, v);
+        if (!(d2 > 0)) return false;
+        distance = std::sqrt(d2);
+        to_light = v / distance;
+        float w = 1;
+        switch (kind) {
+        case Kind::Spot: if (dot(-to_light, axis) < cos_cone) return false; break;
+        case Kind::OneSided: w = -dot(axis, to_light); break;
+        case Kind::TwoSided: w = std::abs(dot(axis, to_light)); break;
+        default: break;
+        }
+        if (!(w > 0)) return false;
+        irradiance = emission * (w / d2);
+        return true;
+    }
+};
+
 class LightSet {
 public:
     // `scene` must outlive the set (emissive meshes read its textures). Bounds: the scene's
@@ -40,6 +110,10 @@ public:
     // when light i cannot reach p this way (back side, outside a spot's cone, a laser,
     // a sun below the horizon).
     bool sample_direct(size_t i, Vec3 p, Vec3 n, float u1, float u2, DirectLightSample& out) const;
+    // Light i sampled for in-scattering along a camera segment (InScatterLight); false for a
+    // laser (a delta direction no camera ray meets: its single scattering stays with photons)
+    // and for a light without power.
+    bool sample_in_medium(size_t i, float u1, float u2, InScatterLight& out) const;
     // No sample of light i arrives at p later than this (ns; +infinity where no cheap bound is
     // known: suns, emissive meshes). A carried section skips lights whose light is all earlier.
     double latest_arrival_ns(size_t i, Vec3 p) const;

@@ -73,4 +73,10 @@ bool SunLight::sample_direct(Vec3 p, Vec3 n, float u1, float u2, Vec3& irradianc
     return true;
 }
 
+void SunLight::sample_in_medium(float u1, float u2, Vec3& travel, float& cos_a, Vec3& irradiance) const {
+    travel = sample_direction(u1, u2);
+    cos_a = dot(travel, d_);
+    irradiance = irradiance_ * (1 / cos_a);  // sample_direct's E cos_p / cos_a with cos_p = 1
+}
+
 }  // namespace sl

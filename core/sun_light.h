@@ -38,6 +38,13 @@ public:
     bool sample_direct(Vec3 p, Vec3 n, float u1, float u2, Vec3& irradiance, Vec3& to_light, float& distance,
                        double& start_ns) const;
 
+    // One sampled direction for in-scattering in the medium (no surface, so no cosine there):
+    // the travel direction w, cos(w, axis), and the irradiance on a plane facing w, E / cos.
+    // Light reaches x at max(0, dot(x, axis) - h0) / (cos c), after a shadow ray of
+    // (max(0, dot(x, axis) - h0) + lead) / cos back to the rectangle.
+    void sample_in_medium(float u1, float u2, Vec3& travel, float& cos_a, Vec3& irradiance) const;
+    float lead() const { return lead_; }
+
 private:
     Vec3 sample_direction(float u1, float u2) const;  // travel direction, pdf cos/(pi sin^2 a)
 

@@ -7,7 +7,7 @@
 
 namespace sl {
 
-void gather_volume_at(const RenderContext& ctx, const PixelSegments& segments, const VolumePhotonMap& photons,
+void gather_volume_at(const RenderContext& ctx, const CameraSegment& sg, const VolumePhotonMap& photons,
                       int64_t photons_emitted, size_t pixel, SectionBuffer& buffer, BeamCounters& counters) {
     const HomogeneousMedium& medium = *ctx.medium;
     const BucketFinder bucket(ctx.timeline);  // every photon along the segments asks it
@@ -20,8 +20,7 @@ void gather_volume_at(const RenderContext& ctx, const PixelSegments& segments, c
     const float scale = ctx.volume_radius > 0 ? r / ctx.volume_radius : 1.0f;
     const float slope = std::sqrt(scale) * kFootprintRadii * ctx.camera.pixel_footprint(1.0f);
     const float inv_c = static_cast<float>(1.0 / kSpeedOfLight);
-    for (int j = 0; j < segments.count; ++j) {
-        const CameraSegment& sg = segments.segment[j];
+    {
         const double back0 = tof ? sg.camera_ns : 0.0;
         const float s0 = slope * static_cast<float>(sg.camera_ns * kSpeedOfLight);  // the camera leg so far
         ++counters.segments;

@@ -22,9 +22,9 @@ struct BeamCounters {
     uint64_t photon_hits = 0;  // photons gathered
 };
 
-// Adds the estimate along one pixel's segments to its slots, with this pass's volume radius
+// Adds the estimate along one of a pixel's segments to its slots, with this pass's volume radius
 // (buffer.volume_radius2) and `photons_emitted` photon paths.
-void gather_volume_at(const RenderContext& ctx, const PixelSegments& segments, const VolumePhotonMap& photons,
+void gather_volume_at(const RenderContext& ctx, const CameraSegment& sg, const VolumePhotonMap& photons,
                       int64_t photons_emitted, size_t pixel, SectionBuffer& buffer, BeamCounters& counters);
 
 // The beam's radius never falls below kFootprintRadii pixel footprints at the photon's distance

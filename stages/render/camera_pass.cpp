@@ -4,6 +4,7 @@
 #include <tbb/parallel_reduce.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <ctime>
@@ -14,6 +15,7 @@
 #include "core/rng.h"
 #include "core/specular_path.h"
 #include "core/surface_material.h"
+#include "stages/render/single_scatter.h"
 
 namespace sl {
 
@@ -43,37 +45,45 @@ struct PixelTracer {
     int pass;
     const HomogeneousMedium* medium;  // null in vacuum
     DepositQueue& deposits;
+    const VolumePhotonMap* volume;    // this pass's volume photons (null in vacuum)
+    int64_t emitted = 0;              // photon paths traced this pass
+    BeamCounters beam{};
+    SingleScatterCounters single{};
     uint64_t rays = 0;
     // The pixel's path, for the estimates at its end.
     VisiblePoint vp{};
     bool has_visible_point = false;
-    PixelSegments segments;
+    bool timed = false;               // count the cycles spent on in-scattering for this pixel
+    uint64_t medium_cycles = 0;       // of this pixel (when timed)
 
     size_t local = 0;  // the pixel's index in the buffer (its own, or its rank's share)
 
     // `pixel`: in the image (it picks the random stream and the ray); `local_pixel`: in the buffer.
     void trace(size_t pixel, size_t local_pixel) {
         local = local_pixel;
+        has_visible_point = false;
+        medium_cycles = 0;
         const RenderDesc& settings = ctx.render;
         Rng rng(settings.seed, 1, static_cast<uint64_t>(pass), pixel);
-        float fx = static_cast<float>(pixel % ctx.width) + rng.uniform();
-        float fy = static_cast<float>(pixel / ctx.width) + rng.uniform();
+        float fx = static_cast<float>(pixel % ctx.width), fy = static_cast<float>(pixel / ctx.width);
+        float weight = 1;
+        if (!jitter(fx, fy, rng, weight)) return;
         Vec3 o = ctx.camera.position(), d = ctx.camera.direction(fx, fy);
-        Vec3 beta(1);
+        Vec3 beta(weight);
         double leg_ns = 0;  // camera leg so far, in ns (light crosses glass at c/n)
         bool inside = false;
         float inside_ior = 1;
         int specular = 0;
         float tnear = 0;
         has_visible_point = false;
-        segments.count = 0;
+        medium_cycles = 0;
         const bool tof = settings.camera_tof;
         for (;;) {
             SurfaceHit hit;
             ++rays;
             const bool found = ctx.geometry.intersect(o, d, tnear, 1e30f, hit);
             // Dielectric solids hold no medium: only pieces outside them cross it.
-            if (medium && !inside) cross_medium(pixel, o, d, tnear, found ? hit.t : 1e30f, leg_ns, specular, beta);
+            if (medium && !inside) cross_medium(o, d, tnear, found ? hit.t : 1e30f, leg_ns, specular, beta, rng);
             if (!found) return;
             leg_ns += hit.t * (inside ? inside_ior : 1.0f) / kSpeedOfLight;
             if (hit.light >= 0) {  // an emitter seen directly (or through specular surfaces)
@@ -109,21 +119,70 @@ struct PixelTracer {
         }
     }
 
-    // Records the piece of o + t d, t in (tnear, tfar), inside the medium and attenuates the
-    // path's throughput by its transmittance.
-    void cross_medium(size_t pixel, Vec3 o, Vec3 d, float tnear, float tfar, double leg_ns, int specular, Vec3& beta) {
+    // The ray's point in the pixel (x, y): uniform, except in the pixels within kLightImage pixels
+    // of a point light's image in the haze, where a ray passing at h from the light sees
+    // in-scattering ~ 1/h and uniform jitter has a variance that grows without bound
+    // (log(pixel / h)): there, half the rays are drawn with density ~ 1 / (distance to the
+    // light's image) in a disc of kLightImage pixels round it (a ray then passes at h in
+    // proportion), and every contribution is weighted by 1 / (the mixture's density). Rays
+    // drawn outside the pixel count as zero. False: nothing to trace.
+    static constexpr float kLightImage = 1.0f;
+    bool jitter(float& fx, float& fy, Rng& rng, float& weight) const {
+        const float x0 = fx, y0 = fy;
+        const std::array<float, 2>* near = nullptr;
+        for (const std::array<float, 2>& c : ctx.light_images)
+            if (c[0] > x0 - kLightImage && c[0] < x0 + 1 + kLightImage && c[1] > y0 - kLightImage &&
+                c[1] < y0 + 1 + kLightImage) {
+                near = &c;
+                break;
+            }
+        if (!near) {
+            fx = x0 + rng.uniform();
+            fy = y0 + rng.uniform();
+            return true;
+        }
+        if (rng.uniform() < 0.5f) {
+            fx = x0 + rng.uniform();
+            fy = y0 + rng.uniform();
+        } else {
+            const float r = kLightImage * rng.uniform(), phi = 2 * kPi * rng.uniform();
+            fx = (*near)[0] + r * std::cos(phi);
+            fy = (*near)[1] + r * std::sin(phi);
+            if (!(fx >= x0 && fx < x0 + 1 && fy >= y0 && fy < y0 + 1)) return false;
+        }
+        const float dx = fx - (*near)[0], dy = fy - (*near)[1];
+        const float rc = std::sqrt(dx * dx + dy * dy);
+        const float q = rc < kLightImage ? 1 / (2 * kPi * kLightImage * rc) : 0.0f;  // 1/r in the disc
+        weight = 1 / (0.5f + 0.5f * q);
+        return std::isfinite(weight) && weight > 0;
+    }
+
+    // The piece of o + t d, t in (tnear, tfar), inside the medium: its in-scattering at once
+    // (single scattering by next-event estimation, unless the photons carry it; then the beam
+    // estimate of the volume photons), and the path's throughput attenuated by its transmittance.
+    // Every piece gathers, however many specular bounces came before it.
+    void cross_medium(Vec3 o, Vec3 d, float tnear, float tfar, double leg_ns, int specular, Vec3& beta, Rng& rng) {
         float t0, t1;
         if (!medium->clip(o, d, tnear, tfar, t0, t1)) return;
-        if (segments.count < PixelSegments::kCapacity) {
-            CameraSegment& s = segments.segment[segments.count++];
-            s.origin = o + d * t0;
-            s.dir = d;
-            s.length = t1 - t0;
-            s.beta = beta;
-            s.depth_left = static_cast<uint32_t>(ctx.render.max_depth - specular);
-            s.camera_ns = leg_ns + t0 / kSpeedOfLight;
+        const uint64_t c0 = timed ? cycle_clock() : 0;
+        CameraSegment s;
+        s.origin = o + d * t0;
+        s.dir = d;
+        s.length = t1 - t0;
+        s.beta = beta;
+        s.depth_left = static_cast<uint32_t>(ctx.render.max_depth - specular);
+        s.camera_ns = leg_ns + t0 / kSpeedOfLight;
+        if (!ctx.single_scatter_by_photons) {
+            const uint64_t before = single.shadow_rays;
+            single_scatter_along(ctx, s, rng, buffer, deposits, local, single);
+            rays += single.shadow_rays - before;
+        }
+        if (volume) {
+            deposits.drain();  // the beam estimate adds to the pixel's slots directly
+            gather_volume_at(ctx, s, *volume, emitted, local, buffer, beam);
         }
         beta *= medium->transmittance(t1 - t0);
+        if (timed) medium_cycles += cycle_clock() - c0;
     }
 
     // nf: the geometric normal facing the path (ray offsets, side tests); ns: the shading
@@ -182,34 +241,30 @@ CameraPassTimes camera_pass(const RenderContext& ctx, int pass, const PassPhoton
         tbb::blocked_range<size_t>(0, buffer.radius2.size(), 256), Work{},  // this rank's pixels
         [&](const tbb::blocked_range<size_t>& r, Work w) {
             DepositQueue deposits;  // drained when it goes out of scope, at the range's end
-            PixelTracer tracer{ctx, buffer, pass, medium, deposits, 0, {}, false, {}};
-            BeamCounters beam;
+            PixelTracer tracer{ctx, buffer, pass, medium, deposits, volume, photons.emitted};
             const PixelShare share = buffer.share;
             for (size_t p = r.begin(); p != r.end(); ++p) {
                 // The split between the parts is sampled on one pixel in kTimedEvery: reading
                 // the clock four times a pixel cost as much as a sixth of the pass.
                 const bool timed = p % kTimedEvery == 0;
+                tracer.timed = timed;
                 const uint64_t c0 = timed ? cycle_clock() : 0;
                 tracer.trace(share.global(p), p);
                 const uint64_t c1 = timed ? cycle_clock() : 0;
-                if (volume && tracer.segments.count > 0) {
-                    deposits.drain();  // the beam estimate adds to the pixel's slots directly
-                    gather_volume_at(ctx, tracer.segments, *volume, photons.emitted, p, buffer, beam);
-                }
-                const uint64_t c2 = timed ? cycle_clock() : 0;
                 if (tracer.has_visible_point)
                     gather_surface_at(ctx, tracer.vp, photons.surface, photons.emitted, p, buffer, deposits);
                 w.max_r2 = std::max(w.max_r2, buffer.radius2[p]);
                 if (timed) {
-                    const uint64_t c3 = cycle_clock();
-                    w.camera_paths += c1 - c0;
-                    w.volume += c2 - c1;
-                    w.gather += c3 - c2;
+                    const uint64_t c2 = cycle_clock();
+                    w.camera_paths += c1 - c0 - tracer.medium_cycles;
+                    w.volume += tracer.medium_cycles;
+                    w.gather += c2 - c1;
                 }
             }
             counters.rays.fetch_add(tracer.rays, std::memory_order_relaxed);
-            counters.beam_segments.fetch_add(beam.segments, std::memory_order_relaxed);
-            counters.beam_hits.fetch_add(beam.photon_hits, std::memory_order_relaxed);
+            counters.beam_segments.fetch_add(tracer.beam.segments, std::memory_order_relaxed);
+            counters.beam_hits.fetch_add(tracer.beam.photon_hits, std::memory_order_relaxed);
+            counters.single_scatter_samples.fetch_add(tracer.single.samples, std::memory_order_relaxed);
             return w;
         },
         [](Work a, const Work& b) {

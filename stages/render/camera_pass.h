@@ -4,7 +4,9 @@
 // diffuse surface (the visible point). There, at once and with their own arrival times: direct
 // light, seen emitters and ambient; the beam estimate along the path's pieces in the medium;
 // and the gather of the pass's photons with the pixel's shrinking radius. Visible points are
-// never stored: per pixel, only the section buffer lives between passes.
+// never stored: per pixel, only the section buffer lives between passes. Each piece of the path
+// inside the medium gathers its in-scattering as soon as it is found: single scattering by
+// next-event estimation (single_scatter.h), the rest from the volume photons (beam_estimate.h).
 #include <atomic>
 #include <cstdint>
 
@@ -20,6 +22,7 @@ namespace sl {
 struct CameraPassCounters {
     std::atomic<uint64_t> rays{0};
     std::atomic<uint64_t> beam_segments{0}, beam_hits{0};  // with a medium
+    std::atomic<uint64_t> single_scatter_samples{0};        // distance samples of single scattering
 };
 
 // This pass's photons, already traced: the surface grid and, with a medium, the volume BVH.
@@ -32,7 +35,7 @@ struct PassPhotons {
 // How the pass's time split between its parts (from per-pixel cycle counts), in seconds.
 struct CameraPassTimes {
     double camera_paths = 0;  // camera paths, direct light, emitters
-    double volume = 0;  // the beam estimate
+    double volume = 0;  // in-scattering: single scattering (next-event estimation) and the beam estimate
     double gather = 0;  // the surface gather and the radius update
     double volume_cpu = 0;  // the beam estimate's share of the process CPU time
 };

@@ -1,8 +1,8 @@
 #pragma once
-// The pieces of one camera path that cross the medium, kept while the pixel is traced for the
-// beam radiance estimate at its end. A fixed capacity (the primary segment and one after a
-// specular bounce) keeps the camera pass free of allocation; further segments still attenuate,
-// they only gather no in-scattering.
+// One piece of a camera path that crosses the medium. The camera pass estimates its
+// in-scattering as soon as the piece is found (single scattering by next-event estimation, then
+// the beam estimate of the volume photons), so a path may have any number of them and none is
+// stored.
 #include <cstdint>
 
 #include "foundation/vec3.h"
@@ -16,12 +16,6 @@ struct CameraSegment {
     Vec3 beta;           // camera throughput at origin (transmittance before it included)
     uint32_t depth_left = 0;  // photon vertices this segment may still accept
     double camera_ns = 0;     // camera leg up to origin (ns), for camera_tof
-};
-
-struct PixelSegments {
-    static constexpr int kCapacity = 2;
-    CameraSegment segment[kCapacity];
-    int count = 0;
 };
 
 }  // namespace sl

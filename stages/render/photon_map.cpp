@@ -16,8 +16,9 @@ namespace {
 
 // Follows one photon path, storing a record at every diffuse vertex whose light is not
 // already computed as direct light (vertex 1 is direct, except for lasers), and, in a medium,
-// a volume photon at every scattering event (all of them: the camera pass computes no
-// single scattering, the beam estimate gathers it).
+// a volume photon at every scattering event but the first vertex's (single scattering, which
+// the camera pass computes by next-event estimation; a laser's is kept: no camera ray meets
+// its delta direction).
 struct PhotonPath {
     const RenderContext& ctx;
     const SectionLayout& layout;
@@ -31,6 +32,7 @@ struct PhotonPath {
     // may still move an earlier photon into the section.
     const bool drop_early = layout.carried && !ctx.render.camera_tof;
     bool early(double t) const { return drop_early && ctx.timeline.bucket(t) < layout.first_bucket; }
+    const bool single_by_photons = ctx.single_scatter_by_photons;
 
     void trace(Rng& rng) {
         const RenderDesc& settings = ctx.render;
@@ -56,7 +58,9 @@ struct PhotonPath {
                         t += s / kSpeedOfLight;
                         if (t >= cut || is_black(flux)) return;
                         o = o + d * s;
-                        if (volume && !early(t))
+                        // Single scattering (depth 1: straight from the light) is the camera
+                        // pass's next-event estimate, except for a laser's delta beam.
+                        if (volume && !early(t) && (depth >= 2 || e.direct_by_photons || single_by_photons))
                             volume->push_back({o.x, o.y, o.z, d.x, d.y, d.z, flux.x, flux.y, flux.z,
                                                static_cast<uint32_t>(depth), t});
                         if (depth == max_depth) return;

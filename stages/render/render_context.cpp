@@ -39,6 +39,14 @@ RenderContext::RenderContext(const SceneDesc& desc)
         if (m.active()) {
             medium.emplace(m);
             volume_radius = choose_volume_radius(desc, m, camera);
+            for (const LightDesc& l : desc.lights) {
+                if (l.type != LightType::Point && l.type != LightType::Spot) continue;
+                float t0, t1;
+                if (!m.clip(l.position, Vec3(0, 0, 1), -1e-6f, 1e-6f, t0, t1)) continue;  // outside the box
+                float px, py;
+                if (camera.project(l.position, px, py) && px > -2 && py > -2 && px < width + 2 && py < height + 2)
+                    light_images.push_back({px, py});
+            }
         }
     }
 }

@@ -3,6 +3,8 @@
 // time axis and the settings that shape the estimate.
 #include <memory>
 #include <optional>
+#include <array>
+#include <vector>
 
 #include "foundation/constants.h"
 #include "config/scene_desc.h"
@@ -33,6 +35,14 @@ struct RenderContext {
     // of some volume): without it every stage runs its vacuum code and allocates nothing.
     std::optional<HomogeneousMedium> medium;
     float volume_radius = 0;     // initial radius of the beam estimate (meters), with a medium
+    // false (always, for the program): the camera pass computes single scattering in the medium
+    // by next-event estimation and volume photons of depth 1 are not stored (but lasers').
+    // true: the estimator before it, every volume photon stored and the camera pass sampling
+    // no light in the medium; kept only so that tests can compare the two (not a scene key).
+    bool single_scatter_by_photons = false;
+    // Image positions (pixel units) of the point and spot lights inside the medium in front of
+    // the camera: the pixels round them sample their rays towards them (camera_pass.cpp).
+    std::vector<std::array<float, 2>> light_images;
     int width = 0, height = 0;
     // The other processes rendering this image with this one (MPI ranks); null: this one alone.
     RankExchange* exchange = nullptr;

@@ -249,9 +249,12 @@ Opened open_checked(const std::string& path, File& file) {
     std::memcpy(&o.h, head, sizeof o.h);
     uint64_t hc;
     std::memcpy(&hc, head + kSectionStateHeaderBytes - 8, 8);
-    if (o.h.format < kSectionStateFormat)  // format 1: a hand-written checksum, not XXH64
+    if (o.h.format < kSectionStateFormat)  // 1: a hand-written checksum; 2: single scattering by photons
         refuse(path, "written by an older slowlight (checkpoint format " + std::to_string(o.h.format) +
-                         ", this one reads format " + std::to_string(kSectionStateFormat) + ")");
+                         ", this one reads format " + std::to_string(kSectionStateFormat) +
+                         (o.h.format == 2 ? ": single scattering in haze is now computed in the camera pass, not by "
+                                            "photons; finish it with that version or start again)"
+                                          : ")"));
     if (o.h.format != kSectionStateFormat)
         refuse(path, "format version " + std::to_string(o.h.format) + ", this program reads version " +
                          std::to_string(kSectionStateFormat));

@@ -34,7 +34,10 @@
 
 namespace sl {
 
-inline constexpr uint32_t kSectionStateFormat = 2;  // 2: XXH64 checksums (1: hand-written ones)
+// 3: single scattering in the medium by next-event estimation, volume photons from depth 2
+// (2: every volume photon; an image summed from both would count nothing twice but its passes
+// would not be those of either build); 2: XXH64 checksums (1: hand-written ones).
+inline constexpr uint32_t kSectionStateFormat = 3;
 inline constexpr size_t kSectionStateHeaderBytes = 256;
 
 // Who a checkpoint belongs to; compared field by field when reading.

@@ -174,8 +174,11 @@ TEST(MediumAnalytic, CameraInsideASpotBeam) {
     Reference ref = reference(s, r, 0.3f);
     Error e = compare(test::render_all(s), ref, s.time.frames);
     std::printf("spot, camera in the beam: rel %.4f bias %+.4f dark leak %.2g\n", e.rel, e.bias, e.dark_leak);
-    EXPECT_LT(e.rel, 0.06);
-    EXPECT_LT(std::abs(e.bias), 0.03);
+    // Single scattering is next-event estimation now (max_depth 1: no photon is stored): no
+    // bias, but per pixel noisier than the beam estimate's blur where the segments cross the
+    // cone's edge (distance samples beyond it find no light): 10.8% at 32 passes (6% before).
+    EXPECT_LT(e.rel, 0.13);
+    EXPECT_LT(std::abs(e.bias), 0.01);
 }
 
 }  // namespace

@@ -221,7 +221,12 @@ TEST(Checkpoints, BrokenForeignAndOtherVersionCheckpointsAreRefused) {
     b = good;
     b[8] = 1;  // what an older build wrote: format 1, checksums that were not XXH64
     put_bytes(s.ckpt, b);
-    expect_refused(s, s.args, "written by an older slowlight (checkpoint format 1, this one reads format 2)");
+    expect_refused(s, s.args, "written by an older slowlight (checkpoint format 1, this one reads format 3)");
+
+    b = good;
+    b[8] = 2;  // before single scattering in haze moved to the camera pass: its passes mean another estimator
+    put_bytes(s.ckpt, b);
+    expect_refused(s, s.args, "checkpoint format 2, this one reads format 3: single scattering in haze");
 
     // The same state, written by another version of the program.
     put_bytes(s.ckpt, good);
