@@ -117,6 +117,8 @@ std::string texture_path(const LineReader& lr, const std::vector<std::string_vie
     fs::path p(std::string(t.back()));
     if (p.is_relative()) p = dir / p;
     p = p.lexically_normal();
+    std::error_code ec;
+    if (!fs::exists(p, ec)) lr.fail(std::string(t[0]) + " names a missing texture file: " + p.string());
     try {
         check_input_file(p.string(), limits::kMaxTextureFileBytes, p.string(), "texture");
     } catch (const InputError& e) {
@@ -386,9 +388,16 @@ ImportedFile read_obj_mtl(const std::string& path, bool read_materials) {
                 for (size_t i = 1; i < t.size(); ++i) libs.push_back(resolve(std::string(t[i])));
             }
             for (const fs::path& p : libs)
-                if (!fs::is_regular_file(p, ec))
+                if (fs::exists(p, ec) && !fs::is_regular_file(p, ec)) {  // there, but no file: say what it is
+                    try {
+                        check_input_file(p.string(), kMaxTextBytes, p.string(), "material library (.mtl)");
+                    } catch (const InputError& e) {
+                        lr.fail(std::string("mtllib names ") + e.what());
+                    }
+                } else if (!fs::is_regular_file(p, ec)) {
                     lr.fail("mtllib names a missing material library: " + p.string() +
                             (libs.size() > 1 ? " (nor is " + resolve(name).string() + " a file)" : ""));
+                }
             for (const fs::path& p : libs) read_mtl(p.string(), out, mtl);
         } else if (k == "l" || k == "p") {
             if (warned.insert("lp").second)
