@@ -1,5 +1,6 @@
 #include "core/scene_geometry.h"
 
+#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -19,6 +20,8 @@ void embree_error(void*, RTCError code, const char* str) {
 }  // namespace
 
 SceneGeometry::SceneGeometry(const SceneDesc& desc) {
+    static std::atomic<uint64_t> made{0};
+    id_ = ++made;
     device_ = rtcNewDevice("threads=0");
     if (!device_) throw RuntimeFailure("cannot create the Embree device (error " +
                                        std::to_string(rtcGetDeviceError(nullptr)) + ")");
@@ -79,11 +82,12 @@ void SceneGeometry::add_triangles(const std::vector<Vec3>& v, const std::vector<
         bmax_ = vmax(bmax_, v[i]);
     }
     std::memcpy(ib, idx.data(), idx.size() * sizeof(uint32_t));
-    attach(g, material, light, std::move(mesh));
+    attach(g, material, light, std::move(mesh), vb, ib);
     triangles_ += idx.size() / 3;
 }
 
-void SceneGeometry::attach(RTCGeometry g, int material, int light, std::shared_ptr<const MeshData> mesh) {
+void SceneGeometry::attach(RTCGeometry g, int material, int light, std::shared_ptr<const MeshData> mesh,
+                           const float* vertices, const uint32_t* indices) {
     rtcCommitGeometry(g);
     unsigned id = rtcAttachGeometry(scene_, g);
     rtcReleaseGeometry(g);
@@ -91,7 +95,11 @@ void SceneGeometry::attach(RTCGeometry g, int material, int light, std::shared_p
         geom_material_.resize(id + 1, -1);
         geom_light_.resize(id + 1, -1);
         geom_mesh_.resize(id + 1);
+        geom_vertices_.resize(id + 1, nullptr);
+        geom_indices_.resize(id + 1, nullptr);
     }
+    geom_vertices_[id] = vertices;
+    geom_indices_[id] = indices;
     geom_material_[id] = material;
     geom_light_[id] = light;
     geom_mesh_[id] = std::move(mesh);
@@ -104,6 +112,7 @@ void SceneGeometry::add_sphere(Vec3 c, float r, int material) {
     if (!vb) throw RuntimeFailure("Embree could not allocate a sphere buffer");
     vb[0] = c.x; vb[1] = c.y; vb[2] = c.z; vb[3] = r;
     attach(g, material, -1, nullptr);
+    spheres_.push_back(vb);
     bmin_ = vmin(bmin_, c - Vec3(r));
     bmax_ = vmax(bmax_, c + Vec3(r));
 }

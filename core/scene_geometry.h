@@ -38,6 +38,14 @@ public:
     bool intersect(Vec3 o, Vec3 d, float tnear, float tfar, SurfaceHit& hit) const;
     // True when anything blocks o + t d for t in (tnear, tfar).
     bool occluded(Vec3 o, Vec3 d, float tnear, float tfar) const;
+    // The distance from c to the nearest surface reaching higher than `height` above the plane
+    // through p with unit normal n, or `radius` when there is none nearer: no ray from c of
+    // length below it that stays above that height can hit anything. One BVH traversal (a point
+    // query); conservative: a triangle counts if one of its corners is above the height, a
+    // sphere always. (The gather's blockers skip their rays on open ground with it.)
+    float clear_radius(Vec3 c, float radius, Vec3 p, Vec3 n, float height) const;
+    // Distinct for every SceneGeometry made in the process (a cache's key).
+    uint64_t id() const { return id_; }
 
     Vec3 bounds_min() const { return bmin_; }
     Vec3 bounds_max() const { return bmax_; }
@@ -49,12 +57,19 @@ private:
                        std::shared_ptr<const MeshData> mesh = nullptr);
     void add_sphere(Vec3 center, float radius, int material);
     // Commits g, attaches it to the scene and records what its hits mean (by its Embree ID).
-    void attach(RTCGeometry g, int material, int light, std::shared_ptr<const MeshData> mesh);
+    void attach(RTCGeometry g, int material, int light, std::shared_ptr<const MeshData> mesh,
+                const float* vertices = nullptr, const uint32_t* indices = nullptr);
 
     RTCDevice device_ = nullptr;
     RTCScene scene_ = nullptr;
     std::vector<int> geom_material_, geom_light_;  // by Embree geometry ID
     std::vector<std::shared_ptr<const MeshData>> geom_mesh_;  // imported meshes: per-triangle data
+    // By Embree geometry ID, for point queries: a triangle mesh's vertex (xyz) and index buffers
+    // (owned by Embree), null for a sphere.
+    std::vector<const float*> geom_vertices_;
+    std::vector<const uint32_t*> geom_indices_;
+    std::vector<const float*> spheres_;  // each sphere's centre and radius (owned by Embree)
+    uint64_t id_;
     Vec3 bmin_{1e30f}, bmax_{-1e30f};
     size_t triangles_ = 0;
 };

@@ -64,6 +64,31 @@ double clipped_sector_area(int sector, float rho, float ux, float uy, float R) {
     return area;
 }
 
+// What the last point query on this thread found: no surface within rho of o rises above hq
+// over the plane through p with normal n (in the scene geometry `scene`).
+struct ClearBall {
+    uint64_t scene = 0;
+    Vec3 o, p, n;
+    float rho = -1, hq = 0;
+};
+thread_local ClearBall last_clear;
+constexpr float kQueryWidth = 4.0f;  // the query's radius, in the rays' reach
+
+// Whether no surface within `reach` of o rises above `height` over the plane (p, n). Only the
+// time taken depends on the thread's earlier points: the answer is the geometry's.
+bool nothing_rises(const SceneGeometry& geometry, Vec3 o, float reach, Vec3 p, Vec3 n, float height) {
+    ClearBall& c = last_clear;
+    if (c.scene == geometry.id() && n.x == c.n.x && n.y == c.n.y && n.z == c.n.z) {
+        // Heights over this point's plane are those over the cached one plus dot(n, p' - p).
+        const float shift = std::abs(dot(n, c.p - p));
+        if (c.hq + shift <= 0.8f * height && length(o - c.o) + reach <= 0.999f * c.rho) return true;
+    }
+    const float hq = 0.5f * height;  // stricter than needed, so the ball serves points a little off the plane
+    const float rho = geometry.clear_radius(o, kQueryWidth * reach, p, n, hq);
+    c = ClearBall{geometry.id(), o, p, n, rho, hq};
+    return rho > reach;
+}
+
 }  // namespace
 
 GatherBlockers::GatherBlockers(const SceneGeometry& geometry, Vec3 p, Vec3 n, float r2) : p_(p) {
@@ -73,6 +98,13 @@ GatherBlockers::GatherBlockers(const SceneGeometry& geometry, Vec3 p, Vec3 n, fl
     const float lift = std::max(ray_epsilon(p, R), 1e-3f * R);
     const Vec3 o = p + n * lift;
     const float tmax = kReach * R / kCos;
+    // Every point of the rays lies within tmax of o and at least `lift` above the point's
+    // tangent plane: when no surface there rises above half that height (open ground, the
+    // point's own surface lying under the rays), all four would miss, so the answer is the rays'
+    // own and the pixels do not change. A point query, wider than the rays' reach, answers that;
+    // the clear ball it finds also answers for the next points on this thread that lie on the
+    // same plane well inside it (neighbouring pixels of one floor): a few queries for many points.
+    if (nothing_rises(geometry, o, tmax * 1.001f, p, n, 0.5f * lift)) return;
     float rho[kSectors], ux[kSectors], uy[kSectors];  // each blocker's trace on the tangent plane
     bool cuts[kSectors] = {};
     for (int s = 0; s < kSectors; ++s) {
