@@ -55,13 +55,13 @@ TEST(GatherBlockers, APointBesideAWallKeepsTheDiscLessTheSegmentBeyondIt) {
                 const Vec3 along{std::sin(angle), 0, std::cos(angle)};
                 const Vec3 mine = normal_of_wall * 0.001f + along * (s * R);
                 const Vec3 beyond = normal_of_wall * -0.001f + along * (s * R);
-                if (dot(mine - p, mine - p) < R * R) EXPECT_TRUE(b.visible(mine)) << s;
-                if (D < R && dot(beyond - p, beyond - p) < R * R) EXPECT_FALSE(b.visible(beyond)) << s;
+                if (dot(mine - p, mine - p) < R * R) { EXPECT_TRUE(b.visible(mine)) << s; }
+                if (D < R && dot(beyond - p, beyond - p) < R * R) { EXPECT_FALSE(b.visible(beyond)) << s; }
                 // Past the mirror line, on the point's own side: left out too.
                 const Vec3 past = p + normal_of_wall * static_cast<float>(mirror + 0.002) + along * (s * 0.3f * R);
-                if (D < R && dot(past - p, past - p) < R * R) EXPECT_FALSE(b.visible(past)) << s;
+                if (D < R && dot(past - p, past - p) < R * R) { EXPECT_FALSE(b.visible(past)) << s; }
                 const Vec3 within = p + normal_of_wall * static_cast<float>(mirror - 0.002) + along * (s * 0.3f * R);
-                if (D < R && D > 0.003 && dot(within - p, within - p) < R * R) EXPECT_TRUE(b.visible(within)) << s;
+                if (D < R && D > 0.003 && dot(within - p, within - p) < R * R) { EXPECT_TRUE(b.visible(within)) << s; }
             }
         }
     }
