@@ -25,7 +25,7 @@ tinygltf::FsCallbacks GltfFiles::callbacks() { return {&GltfFiles::exists, &Gltf
 std::string GltfFiles::shown(const std::string& path) const {
     std::string rest = in_model_folder(path) ? path.substr(folder_prefix_.size()) : path;
     while (!rest.empty() && rest.front() == '/') rest.erase(rest.begin());
-    return (fs::path(user_folder_) / rest).lexically_normal().string();
+    return user_folder_.empty() ? rest : (fs::path(user_folder_) / rest).string();
 }
 
 // tinygltf asks for the model's folder first, then for ".": only the first is ours. Anything

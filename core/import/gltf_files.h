@@ -8,6 +8,7 @@
 #include <tiny_gltf.h>
 
 #include <cstdint>
+#include <filesystem>
 #include <map>
 #include <string>
 
@@ -27,7 +28,7 @@ public:
     // and why a given file (named as the user would name it) could not, if it was asked for.
     const std::string& failure() const { return failure_; }
     std::string failure_of(const std::string& shown_path) const {
-        auto it = failures_.find(shown_path);
+        auto it = failures_.find(std::filesystem::path(shown_path).lexically_normal().string());
         return it == failures_.end() ? std::string() : it->second;
     }
     std::string shown(const std::string& path) const;  // as the user would name it
@@ -41,7 +42,7 @@ private:
     bool in_model_folder(const std::string& path) const { return path.rfind(folder_prefix_, 0) == 0; }
     void failed(const std::string& path, const std::string& why) {
         failure_ = why;
-        failures_[shown(path)] = why;
+        failures_[std::filesystem::path(shown(path)).lexically_normal().string()] = why;
     }
 
     std::string absolute_model_, folder_prefix_, user_folder_;
