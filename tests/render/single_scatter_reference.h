@@ -48,6 +48,18 @@ struct QuadratureSetup {
     int sub = 2;                  // sub x sub rays per pixel
 };
 
+// The quadrature's medium and timing, as a scene states them.
+inline QuadratureSetup quadrature_setup(const SceneDesc& s) {
+    QuadratureSetup q;
+    q.sigma_t = s.medium.sigma_a + s.medium.sigma_s;
+    q.sigma_s = s.medium.sigma_s;
+    q.g = s.medium.g;
+    q.lo = s.medium.bounds_min;
+    q.hi = s.medium.bounds_max;
+    q.tof = s.render.camera_tof;
+    return q;
+}
+
 // Per pixel, per bucket j in [j_lo, frames) (index j - j_lo), plus the after-slot at the end.
 inline std::vector<std::vector<Vec3>> single_scatter_buckets(const SceneDesc& s, const Timeline& tl,
                                                              const QuadratureSetup& q, const LightModel& light) {

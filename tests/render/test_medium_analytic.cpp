@@ -95,17 +95,9 @@ test::SingleScatterRef make_ref(const SceneDesc& s, std::function<Vec3(Vec3)> in
     return ref;
 }
 
-LightDesc point_light(Vec3 at, float power) {
-    LightDesc l;
-    l.type = LightType::Point;
-    l.position = at;
-    l.power = Vec3(power);
-    return l;
-}
-
 // RGB coefficients that differ per channel (one without absorption), forward scattering.
 SceneDesc point_scene(bool tof) {
-    SceneDesc s = test::light_in_open_medium(point_light({0, 0.8f, 0}, 100), {0.05f, 0.0f, 0.1f},
+    SceneDesc s = test::light_in_open_medium(test::point_light({0, 0.8f, 0}, 100), {0.05f, 0.0f, 0.1f},
                                              {0.3f, 0.15f, 0.05f}, 0.4f, 8, {0, 0, -3}, {0, 0, 0}, 50, 20);
     s.time = {0, 30, 10, 24};  // 3 ns = 0.9 m a frame
     s.render.photons_per_pass = 50000;

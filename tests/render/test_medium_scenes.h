@@ -11,6 +11,14 @@
 
 namespace sl::test {
 
+inline LightDesc point_light(Vec3 at, float power) {
+    LightDesc l;
+    l.type = LightType::Point;
+    l.position = at;
+    l.power = Vec3(power);
+    return l;
+}
+
 constexpr double kC = 0.299792458;  // m/ns
 
 // No surfaces at all: one light in a medium box of half-size `half` around the origin, and a

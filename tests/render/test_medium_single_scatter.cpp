@@ -34,37 +34,18 @@ test::Rendered render_mode(const SceneDesc& scene, bool by_photons) {
     return out;
 }
 
-LightDesc point_light(Vec3 at, float power) {
-    LightDesc l;
-    l.type = LightType::Point;
-    l.position = at;
-    l.power = Vec3(power);
-    return l;
-}
-
 // The issue's case at test size: a 300 W point light about 4 m from a camera inside an open fog
 // (sigma_s 0.5, sigma_a 0.1 /m) 10 m across; here with RGB coefficients (a clear channel
 // included) and g = 0.3, single scattering only. The light is behind the camera (out of view),
 // so that the quadrature's few rays a pixel stay accurate; the light in view is a hard case.
 SceneDesc haze_scene(bool tof, int res = 16) {
-    SceneDesc s = test::light_in_open_medium(point_light({3.0f, 1.0f, -4.9f}, 300), {0.1f, 0.0f, 0.1f},
+    SceneDesc s = test::light_in_open_medium(test::point_light({3.0f, 1.0f, -4.9f}, 300), {0.1f, 0.0f, 0.1f},
                                              {0.5f, 0.4f, 0.0f}, 0.3f, 5, {0, 0, -3.5f}, {0, 0, 1}, 60, res);
     s.time = {0, 40, 16, 24};  // 2.5 ns a frame
     s.render.photons_per_pass = 2000;
     s.render.passes = 8;
     s.render.camera_tof = tof;
     return s;
-}
-
-test::QuadratureSetup setup_of(const SceneDesc& s) {
-    test::QuadratureSetup q;
-    q.sigma_t = s.medium.sigma_a + s.medium.sigma_s;
-    q.sigma_s = s.medium.sigma_s;
-    q.g = s.medium.g;
-    q.lo = s.medium.bounds_min;
-    q.hi = s.medium.bounds_max;
-    q.tof = s.render.camera_tof;
-    return q;
 }
 
 struct FrameErrors {
@@ -138,7 +119,7 @@ std::vector<std::vector<Vec3>> point_reference(const SceneDesc& s, const test::Q
 
 void check_haze(bool tof) {
     SceneDesc s = haze_scene(tof);
-    const auto want = point_reference(s, setup_of(s));
+    const auto want = point_reference(s, test::quadrature_setup(s));
     s.render.passes = 2;
     const FrameErrors e2 = compare(test::render_all(s), want);
     s.render.passes = 16;
@@ -183,7 +164,7 @@ TEST(SingleScatter, IssueCaseSpreadOnRequest) {
     int passes = 0, depth = 0, seeds = 0;
     long long photons = 0;
     ASSERT_EQ(std::sscanf(env, "%d %lld %d %d", &passes, &photons, &depth, &seeds), 4);
-    SceneDesc s = test::light_in_open_medium(point_light({0.8f, 0.5f, 1.5f}, 300), Vec3(0.1f), Vec3(0.5f), 0.0f, 5,
+    SceneDesc s = test::light_in_open_medium(test::point_light({0.8f, 0.5f, 1.5f}, 300), Vec3(0.1f), Vec3(0.5f), 0.0f, 5,
                                              {0, 0, -2.4f}, {0, 0, 1}, 60, 96);
     s.time = {0, 40, 16, 24};
     s.render.passes = passes;
@@ -226,7 +207,7 @@ TEST(SingleScatter, SpotAimedAtTheCamera) {
     const float I = static_cast<float>(80 / (2 * kPiDouble * (1 - cos_cone)));
     const Vec3 axis = spot.direction;
     const Timeline tl = timeline_of(s);
-    test::QuadratureSetup q = setup_of(s);
+    test::QuadratureSetup q = test::quadrature_setup(s);
     q.sub = 4;  // the pixels near the spot's peak (1/b) need more than 2 x 2 rays
     const auto want = test::frames_of(
         test::single_scatter_buckets(s, tl, q, test::point_model(spot.position, [=](Vec3 w) {
@@ -257,7 +238,7 @@ TEST(SingleScatter, QuadLightInTheHaze) {
     s.render.photons_per_pass = 2000;
     s.render.passes = 16;
     const Timeline tl = timeline_of(s);
-    test::QuadratureSetup q = setup_of(s);
+    test::QuadratureSetup q = test::quadrature_setup(s);
     q.steps = 1500;
     const int n = 8;
     const Vec3 normal = normalize(cross(quad.edge1, quad.edge2));
@@ -289,7 +270,7 @@ TEST(SingleScatter, QuadLightInTheHaze) {
 // An emissive mesh in the fog (two triangles, emitting from both faces; sampled by power over
 // its triangles, then the distance), above and behind the camera, against the same quadrature.
 TEST(SingleScatter, EmissiveMeshInTheHaze) {
-    SceneDesc s = test::light_in_open_medium(point_light({0, 0, 0}, 1), Vec3(0.05f), Vec3(0.3f), 0.2f, 5, {0, 0, -2},
+    SceneDesc s = test::light_in_open_medium(test::point_light({0, 0, 0}, 1), Vec3(0.05f), Vec3(0.3f), 0.2f, 5, {0, 0, -2},
                                              {0, 0, 1}, 50, 12);
     s.lights.clear();
     MaterialDesc glow;
@@ -311,7 +292,7 @@ TEST(SingleScatter, EmissiveMeshInTheHaze) {
     s.render.photons_per_pass = 2000;
     s.render.passes = 64;
     const Timeline tl = timeline_of(s);
-    test::QuadratureSetup q = setup_of(s);
+    test::QuadratureSetup q = test::quadrature_setup(s);
     q.steps = 1500;
     const int n = 8;
     const Vec3 normal = normalize(cross(e1, e2));
@@ -346,7 +327,7 @@ TEST(SingleScatter, GrazingSunInAHazeSlab) {
     s.render.photons_per_pass = 2000;
     s.render.passes = 16;
     const Timeline tl = timeline_of(s);
-    test::QuadratureSetup q = setup_of(s);
+    test::QuadratureSetup q = test::quadrature_setup(s);
     const Vec3 D = normalize(sun.direction);
     // The wavefront enters the scene's bounds (here the medium's box) at t = 0.
     double h0 = 1e30;
@@ -395,7 +376,7 @@ TEST(SingleScatter, SegmentsAfterSpecularBouncesGather) {
     s.render.photons_per_pass = 2000;
     s.render.passes = 16;
     const Timeline tl = timeline_of(s);
-    test::QuadratureSetup q = setup_of(s);
+    test::QuadratureSetup q = test::quadrature_setup(s);
     q.mirror_z = {1.5f, -1.5f};
     const double cos_cone = std::cos(7 * kPiDouble / 180);
     const float I = static_cast<float>(50 / (2 * kPiDouble * (1 - cos_cone)));
@@ -431,7 +412,7 @@ TEST(SingleScatter, SegmentsAfterSpecularBouncesGather) {
 // haze from outside the box, where the photon estimate is quiet; single scattering is about
 // half of the image, so counting it twice (or dropping it) would be off by tens of percent.
 TEST(SingleScatter, NextEventPlusPhotonsEqualsPhotonsAlone) {
-    SceneDesc s = test::light_in_open_medium(point_light({0, 1.2f, 0.5f}, 200), Vec3(0.05f), Vec3(0.35f), 0.3f, 1.5f,
+    SceneDesc s = test::light_in_open_medium(test::point_light({0, 1.2f, 0.5f}, 200), Vec3(0.05f), Vec3(0.35f), 0.3f, 1.5f,
                                              {0, 0.3f, -5}, {0, -0.8f, 0}, 30, 24);
     MaterialDesc white;
     white.name = "white";

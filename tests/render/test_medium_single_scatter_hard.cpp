@@ -14,14 +14,6 @@
 namespace sl {
 namespace {
 
-LightDesc point_light(Vec3 at, float power) {
-    LightDesc l;
-    l.type = LightType::Point;
-    l.position = at;
-    l.power = Vec3(power);
-    return l;
-}
-
 bool all_finite(const test::Rendered& r) {
     for (float v : r.steady)
         if (!std::isfinite(v) || v < 0) return false;
@@ -46,22 +38,11 @@ double largest_pixel_share(const test::Rendered& r) {
     return worst;
 }
 
-test::QuadratureSetup setup_of(const SceneDesc& s) {
-    test::QuadratureSetup q;
-    q.sigma_t = s.medium.sigma_a + s.medium.sigma_s;
-    q.sigma_s = s.medium.sigma_s;
-    q.g = s.medium.g;
-    q.lo = s.medium.bounds_min;
-    q.hi = s.medium.bounds_max;
-    q.tof = s.render.camera_tof;
-    return q;
-}
-
 std::vector<std::vector<Vec3>> point_reference(const SceneDesc& s) {
     const Timeline tl = timeline_of(s);
     const Vec3 I = s.lights[0].power * (1 / (4 * kPi));
     return test::frames_of(
-        test::single_scatter_buckets(s, tl, setup_of(s), test::point_model(s.lights[0].position, [I](Vec3) { return I; })),
+        test::single_scatter_buckets(s, tl, test::quadrature_setup(s), test::point_model(s.lights[0].position, [I](Vec3) { return I; })),
         tl, s.emission.mode);
 }
 
@@ -81,7 +62,7 @@ Vec3 last_frame_ratio(const test::Rendered& r, const std::vector<std::vector<Vec
 // (the in-scattered radiance grows as 1/h). Finite, and no single pixel dominates a frame; two
 // seeds agree on the image's mean within its noise.
 TEST(SingleScatterHard, LightNextToTheCamera) {
-    SceneDesc s = test::light_in_open_medium(point_light({0.0002f, 0.0001f, -2.999f}, 100), Vec3(0.1f), Vec3(0.4f),
+    SceneDesc s = test::light_in_open_medium(test::point_light({0.0002f, 0.0001f, -2.999f}, 100), Vec3(0.1f), Vec3(0.4f),
                                              0.2f, 5, {0, 0, -3}, {0, 0, 1}, 50, 16);
     s.time = {0, 30, 6, 24};
     s.render.photons_per_pass = 1000;
@@ -103,7 +84,7 @@ TEST(SingleScatterHard, LightNextToTheCamera) {
 // A camera segment exactly through the light's point (the integral along it is infinite):
 // the estimate stays finite and non-negative, and a segment beside it is unchanged by it.
 TEST(SingleScatterHard, SegmentThroughTheLightsPoint) {
-    SceneDesc s = test::light_in_open_medium(point_light({0, 0, 0}, 100), Vec3(0.1f), Vec3(0.4f), 0.0f, 5,
+    SceneDesc s = test::light_in_open_medium(test::point_light({0, 0, 0}, 100), Vec3(0.1f), Vec3(0.4f), 0.0f, 5,
                                              {0, 0, -3}, {0, 0, 1}, 50, 4);
     s.time = {0, 30, 10, 24};
     RenderContext ctx(s);
@@ -136,7 +117,7 @@ TEST(SingleScatterHard, SegmentThroughTheLightsPoint) {
 // channel; the others still match the quadrature. With a point light and with a sun (whose
 // distance sampling uses the clearest channel that interacts).
 TEST(SingleScatterHard, ChannelWithoutExtinction) {
-    SceneDesc s = test::light_in_open_medium(point_light({3.0f, 1.0f, -4.9f}, 300), {0.1f, 0.0f, 0.05f},
+    SceneDesc s = test::light_in_open_medium(test::point_light({3.0f, 1.0f, -4.9f}, 300), {0.1f, 0.0f, 0.05f},
                                              {0.5f, 0.0f, 0.3f}, 0.3f, 5, {0, 0, -3.5f}, {0, 0, 1}, 60, 16);
     s.time = {0, 40, 8, 24};
     s.render.photons_per_pass = 1000;
@@ -169,7 +150,7 @@ TEST(SingleScatterHard, ChannelWithoutExtinction) {
 // (sigma_t = 1e-4 /m): the last frame's sum against the quadrature.
 TEST(SingleScatterHard, DenseAndThinHaze) {
     for (float st : {5.0f, 1e-4f}) {
-        SceneDesc s = test::light_in_open_medium(point_light({0.6f, 0.3f, -2.4f}, 300), Vec3(0.2f * st), Vec3(0.8f * st),
+        SceneDesc s = test::light_in_open_medium(test::point_light({0.6f, 0.3f, -2.4f}, 300), Vec3(0.2f * st), Vec3(0.8f * st),
                                                  0.3f, 5, {0, 0, -3}, {0, 0, 1}, 60, 12);
         s.time = {0, 20, 8, 24};
         s.render.photons_per_pass = 1000;
@@ -187,7 +168,7 @@ TEST(SingleScatterHard, DenseAndThinHaze) {
 // the camera sees holds anything; the frames after it match the quadrature in their sum.
 TEST(SingleScatterHard, ShortPulseNothingBeforeTheLightCanArrive) {
     const Vec3 light{2.5f, 0.5f, -5.0f}, cam{0, 0, -3};
-    SceneDesc s = test::light_in_open_medium(point_light(light, 300), Vec3(0.1f), Vec3(0.5f), 0.0f, 5, cam,
+    SceneDesc s = test::light_in_open_medium(test::point_light(light, 300), Vec3(0.1f), Vec3(0.5f), 0.0f, 5, cam,
                                              {0, 0, 1}, 60, 12);
     s.time = {0, 20, 400, 24};  // 0.05 ns frames
     s.emission.mode = EmissionMode::Pulse;
