@@ -11,6 +11,7 @@
 
 #include "config/run_options.h"
 #include "config/scene_desc.h"
+#include "foundation/byte_sizes.h"  // format_bytes, for the plan's users
 
 namespace sl {
 
@@ -55,7 +56,5 @@ MemoryBaseline memory_baseline(const SceneDesc& scene, const RunOptions& options
 // even one frame per section is too much.
 MemoryPlan plan_memory(const SceneDesc& scene, const RunOptions& options);
 MemoryPlan plan_memory(const SceneDesc& scene, const RunOptions& options, const MemoryBaseline& fixed);
-
-std::string format_bytes(uint64_t bytes);
 
 }  // namespace sl

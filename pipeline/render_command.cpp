@@ -274,11 +274,14 @@ int RenderCommand::conclude(const PipelineStats& stats) {
 
 SceneDesc load_scene(const RunOptions& o) {
     if (!o.scene_path.empty()) refuse_cube_as_scene(o.scene_path);
+    // --max-memory bounds what the imports may decode to, checked before they are decoded.
+    const ImportBudget budget{o.max_memory_bytes.value_or(0),
+                              o.max_memory_bytes ? "--max-memory " + format_bytes(*o.max_memory_bytes) : ""};
     SceneDesc scene = o.scene_path.empty()          ? parse_default_scene()
-                      : is_model_file(o.scene_path) ? scene_for_model(o.scene_path, o.gltf_light_units)
+                      : is_model_file(o.scene_path) ? scene_for_model(o.scene_path, o.gltf_light_units, budget)
                                                     : parse_scene_file(o.scene_path);
     apply_gltf_light_units(scene, o.gltf_light_units);  // before the files are read
-    resolve_imports(scene);  // meshes, materials, textures and lights of imported files
+    resolve_imports(scene, budget);  // meshes, materials, textures and lights of imported files
     apply_overrides(scene, o.overrides);
     return scene;
 }

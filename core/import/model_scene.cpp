@@ -25,7 +25,7 @@ bool is_model_file(const std::string& path) {
     return e == ".glb" || e == ".gltf" || e == ".obj";
 }
 
-SceneDesc scene_for_model(const std::string& path, std::optional<LightUnits> light_units) {
+SceneDesc scene_for_model(const std::string& path, std::optional<LightUnits> light_units, const ImportBudget& budget) {
     SceneDesc scene;
     scene.source = path;
     ShapeDesc s;
@@ -35,7 +35,7 @@ SceneDesc scene_for_model(const std::string& path, std::optional<LightUnits> lig
     s.material = -1;
     if (s.type == ShapeType::Gltf) s.light_units = light_units;
     scene.shapes.push_back(s);
-    resolve_imports(scene);
+    resolve_imports(scene, budget);
 
     Vec3 lo(1e30f), hi(-1e30f);
     for (const ShapeDesc& sh : scene.shapes)

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "config/scene_desc.h"
+#include "core/import/resolve_imports.h"  // ImportBudget
 
 namespace sl {
 
@@ -17,6 +18,7 @@ bool is_model_file(const std::string& path);
 
 // Throws InputError naming the file when it cannot be read or has no light. `light_units`: how a
 // glTF file's lights are read (--gltf-light-units; empty: photometric).
-SceneDesc scene_for_model(const std::string& path, std::optional<LightUnits> light_units = {});
+SceneDesc scene_for_model(const std::string& path, std::optional<LightUnits> light_units = {},
+                          const ImportBudget& budget = {});
 
 }  // namespace sl

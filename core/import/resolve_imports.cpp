@@ -4,7 +4,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <set>
+#include <unistd.h>
 
+#include "foundation/byte_sizes.h"
 #include "foundation/errors.h"
 #include "foundation/message_lines.h"
 #include "core/import/imported_file.h"
@@ -44,9 +46,72 @@ ImportedFile read_file(const ShapeDesc& s, const std::string& scene_source) {
     }
 }
 
+
+std::vector<bool> used_materials(const ImportedFile& f) {
+    std::vector<bool> used(f.materials.size(), false);
+    for (int32_t m : f.mesh.tri_material) used[static_cast<size_t>(m)] = true;
+    return used;
+}
+
+TextureSource source_of(const ImportedTexture& t) {
+    return {t.desc.file, t.bytes.empty() ? nullptr : &t.bytes, t.format, t.desc.srgb};
+}
+
+// The headers of the textures a file's used materials draw (empty entries for the others).
+std::vector<TextureHeader> texture_headers(const ShapeDesc& s, const ImportedFile& f) {
+    std::vector<TextureHeader> headers(f.textures.size());
+    if (s.material >= 0) return headers;
+    const std::vector<bool> used = used_materials(f);
+    std::vector<bool> probed(f.textures.size(), false);
+    auto probe = [&](int t) {
+        if (t < 0 || probed[static_cast<size_t>(t)]) return;
+        probed[static_cast<size_t>(t)] = true;
+        headers[static_cast<size_t>(t)] = probe_texture(source_of(f.textures[static_cast<size_t>(t)]));
+    };
+    for (size_t i = 0; i < f.materials.size(); ++i)
+        if (used[i]) {
+            probe(f.materials[i].albedo_texture);
+            if (f.materials[i].emits()) probe(f.materials[i].emission_texture);
+        }
+    return headers;
+}
+
+uint64_t machine_bytes() {
+    const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
+    return pages > 0 && page > 0 ? static_cast<uint64_t>(pages) * static_cast<uint64_t>(page) : 0;
+}
+
+// Meshes (as parsed, plus Embree's copy and BVH) and textures (as they will be held) against the
+// budget, before any texture is decoded.
+void check_budget(const std::vector<std::pair<ShapeDesc*, ImportedFile>>& files,
+                  const std::vector<std::vector<TextureHeader>>& headers, const ImportBudget& budget,
+                  const std::string& source) {
+    uint64_t meshes = 0, textures = 0, largest = 0;
+    std::string largest_name;
+    for (size_t i = 0; i < files.size(); ++i) {
+        const MeshData& m = files[i].second.mesh;
+        meshes += m.bytes() + m.positions.size() * 12 + m.triangle_count() * (12 + kBvhBytesPerTriangle);
+        for (size_t t = 0; t < headers[i].size(); ++t) {
+            const TextureHeader& h = headers[i][t];
+            textures += h.bytes();
+            if (h.bytes() > largest) {
+                largest = h.bytes();
+                largest_name = files[i].second.textures[t].desc.file + " (" + std::to_string(h.width) + "x" +
+                               std::to_string(h.height) + ", " + format_bytes(h.bytes()) + ")";
+            }
+        }
+    }
+    const uint64_t bound = budget.bytes ? budget.bytes : machine_bytes();
+    if (bound == 0 || meshes + textures <= bound) return;
+    std::string what = budget.bytes ? budget.what : "this machine's " + format_bytes(bound);
+    throw InputError(source + ": the imported models need " + format_bytes(meshes + textures) + " (meshes and BVH " +
+                     format_bytes(meshes) + ", textures " + format_bytes(textures) +
+                     (largest_name.empty() ? std::string() : ", the largest " + largest_name) + "), more than " + what +
+                     "; nothing was decoded");
+}
 }  // namespace
 
-void resolve_imports(SceneDesc& scene) {
+void resolve_imports(SceneDesc& scene, const ImportBudget& budget) {
     if (scene.imports_resolved) return;
     std::set<std::string> warned;
     // The scene file's own GGX materials that a shape uses, drawn by a stand-in: one line each
@@ -59,18 +124,25 @@ void resolve_imports(SceneDesc& scene) {
             std::fprintf(stderr, "warning: %s: material '%s': %s\n", scene.source.c_str(),
                          scene.materials[i].name.c_str(), lost.c_str());
     }
-    std::vector<std::string> seen_files;
-    for (ShapeDesc& s : scene.shapes) {
-        if (!is_import(s) || s.mesh) continue;
-        ImportedFile f = read_file(s, scene.source);
+    // Every file parsed first, and the headers of the textures its materials use: what the
+    // imports will hold is known before a texel is decoded.
+    std::vector<std::pair<ShapeDesc*, ImportedFile>> files;
+    for (ShapeDesc& s : scene.shapes)
+        if (is_import(s) && !s.mesh) files.emplace_back(&s, read_file(s, scene.source));
+    std::vector<std::vector<TextureHeader>> headers;
+    for (auto& [s, f] : files) headers.push_back(texture_headers(*s, f));
+    check_budget(files, headers, budget, scene.source);
+
+    for (size_t fi = 0; fi < files.size(); ++fi) {
+        ShapeDesc& s = *files[fi].first;
+        ImportedFile& f = files[fi].second;
         const Placement place{s};
         for (const std::string& w : counted_lines(f.warnings))
             if (warned.insert(w).second) std::fprintf(stderr, "%s\n", message_line("warning: ", w).c_str());
         // Materials: the entry's own for every triangle, or the file's (with their textures).
         std::vector<int> material_map(f.materials.size(), s.material);
         if (s.material < 0) {
-            std::vector<bool> used(f.materials.size(), false);
-            for (int32_t m : f.mesh.tri_material) used[static_cast<size_t>(m)] = true;
+            const std::vector<bool> used = used_materials(f);
             std::vector<int> texture_map(f.textures.size(), -1);
             auto texture = [&](int local) {
                 if (local < 0) return -1;
@@ -78,12 +150,16 @@ void resolve_imports(SceneDesc& scene) {
                 if (g >= 0) return g;
                 ImportedTexture& it = f.textures[static_cast<size_t>(local)];
                 TextureDesc d = it.desc;
-                auto img = it.bytes.empty() ? load_texture_file(d.file, d.srgb)
-                                            : load_texture_memory(it.bytes, d.file, it.format, d.srgb);
+                auto img = load_texture(source_of(it));
                 if (img->replaced > 0)  // said once per texture, with how many
                     std::fprintf(stderr, "%s\n",
                                  message_line("warning: ", d.file + ": " + std::to_string(img->replaced) +
                                                                " texel values are NaN, infinite or negative: drawn as 0")
+                                     .c_str());
+                if (img->clamped > 0)
+                    std::fprintf(stderr, "%s\n",
+                                 message_line("warning: ", d.file + ": " + std::to_string(img->clamped) +
+                                                               " texel values are above 65504 (the largest half float): drawn as 65504")
                                      .c_str());
                 img->wrap_s = d.wrap_s;
                 img->wrap_t = d.wrap_t;

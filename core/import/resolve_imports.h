@@ -5,13 +5,22 @@
 // (decoded now, and only those), lights, and the list of files read. Prints one `warning:`
 // line per approximation. Throws InputError naming the file for anything malformed, and when
 // the scene then has no light at all.
+#include <cstdint>
 #include <optional>
+#include <string>
 
 #include "config/scene_desc.h"
 
 namespace sl {
 
-void resolve_imports(SceneDesc& scene);
+// What the imported files may hold at most once decoded. Their meshes are parsed first and the
+// textures' headers read; past the bound nothing is decoded and the error says what it needs.
+struct ImportBudget {
+    uint64_t bytes = 0;  // 0: the machine's physical memory
+    std::string what;    // names the bound in the message: "--max-memory 2G"
+};
+
+void resolve_imports(SceneDesc& scene, const ImportBudget& budget = {});
 
 // A resolved copy (the scene itself when it is resolved already).
 SceneDesc with_imports(const SceneDesc& scene);

@@ -99,7 +99,7 @@ TEST(ImportTextures, PluginLoadsOnlyForTexturedScenes) {
     SceneDesc s = floor_with_panel(dir.file("tex.obj"));
     resolve_imports(s);
     EXPECT_EQ(s.textures.size(), 1u);
-    EXPECT_EQ(texture_bytes(s), 2u * 2 * 3 * sizeof(float));
+    EXPECT_EQ(texture_bytes(s), 2u * 2 * 4);  // 8-bit RGBA
 }
 
 // The irradiance of the one sun of a model, read in the given units.

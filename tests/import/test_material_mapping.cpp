@@ -223,7 +223,8 @@ TEST(MaterialMapping, WrapModesAndBilinear) {
     TextureImage t;
     t.width = 4;
     t.height = 1;
-    t.rgb = {0, 0, 0, 1, 1, 1, 2, 2, 2, 3, 3, 3};
+    t.format = TexelFormat::Half;  // 0..3 are exact halves
+    for (float v : {0.0f, 1.0f, 2.0f, 3.0f}) t.halves.insert(t.halves.end(), 3, float_to_half(v));
     // Texel centres are at u = (i + 0.5) / 4; halfway between texels 1 and 2 is their mean.
     EXPECT_FLOAT_EQ(t.sample(0.5f, 0.5f).x, 1.5f);
     EXPECT_FLOAT_EQ(t.sample(0.375f, 0.5f).x, 1.0f);
