@@ -27,5 +27,11 @@ inline constexpr double kMinSpotConeDeg = 0.1;
 inline constexpr double kMaxSunAngleDeg = 45;
 // A texture file, as stored (compressed): larger is not an image anyone paints.
 inline constexpr uint64_t kMaxTextureFileBytes = uint64_t(1) << 30;
+// What one model file may expand to once its node graph is walked (every path from a root
+// places its meshes again): 2^27 triangles would need some 17 GiB of BVH alone, and 2^24 node
+// visits bound a graph of empty nodes whose paths double at each level.
+inline constexpr uint64_t kMaxImportedTriangles = uint64_t(1) << 27;
+inline constexpr uint64_t kMaxImportedVertices = uint64_t(1) << 27;
+inline constexpr uint64_t kMaxNodeVisits = uint64_t(1) << 24;
 
 }  // namespace sl::limits

@@ -17,6 +17,7 @@
 #include "foundation/constants.h"
 #include "foundation/errors.h"
 #include "core/import/gltf_files.h"
+#include "core/import/gltf_node_expansion.h"
 #include "core/import/imported_file.h"
 #include "core/material_stand_in.h"
 #include "core/import/light_mapping.h"
@@ -131,6 +132,7 @@ bool keep_encoded(tinygltf::Image* image, const int index, std::string* err, std
 // extensions into values recursively: 100,000 nested brackets overflowed the stack inside the
 // library, before any of this reader's checks. Real files nest under a dozen levels.
 constexpr size_t kMaxJsonDepth = 64;
+constexpr int kMaxNodeDepth = 256;
 
 // Reads `length` bytes of JSON text from `f` and returns the offset (from the text's start) of
 // the first bracket that opens level kMaxJsonDepth + 1, or -1. Brackets inside strings do not
@@ -179,6 +181,7 @@ public:
             for (const auto& m : model_.materials) out_.materials.push_back(material(m));
         material_used_.assign(out_.materials.size(), false);
         int scene = model_.defaultScene >= 0 ? model_.defaultScene : 0;
+        std::vector<int> roots;
         if (model_.scenes.empty()) {
             // No scene: every node without a parent is a root.
             std::vector<bool> child(model_.nodes.size(), false);
@@ -186,11 +189,13 @@ public:
                 for (int c : n.children)
                     if (c >= 0 && static_cast<size_t>(c) < child.size()) child[static_cast<size_t>(c)] = true;
             for (size_t i = 0; i < model_.nodes.size(); ++i)
-                if (!child[i]) visit(static_cast<int>(i), identity(), 0);
+                if (!child[i]) roots.push_back(static_cast<int>(i));
         } else {
             if (static_cast<size_t>(scene) >= model_.scenes.size()) fail("the default scene " + std::to_string(scene) + " does not exist");
-            for (int n : model_.scenes[static_cast<size_t>(scene)].nodes) visit(n, identity(), 0);
+            roots = model_.scenes[static_cast<size_t>(scene)].nodes;
         }
+        check_expansion(roots);
+        for (int n : roots) visit(n, identity(), 0);
         if (out_.mesh.indices.empty() && out_.lights.empty())
             fail("the default scene has no triangles and no lights");
         MeshData& mesh = out_.mesh;
@@ -490,9 +495,25 @@ private:
         }
     }
 
+    // The graph's size once every path is placed, bounded before anything is placed.
+    void check_expansion(const std::vector<int>& roots) const {
+        NodeExpansion e;
+        const std::string why = count_expansion(model_, roots, kMaxNodeDepth, e);
+        if (!why.empty()) fail(why);
+        auto over = [&](uint64_t n, uint64_t limit, const char* what) {
+            if (n > limit)
+                fail("its node graph places " + (n >= (uint64_t(1) << 62) ? std::string("more than 2^62") : std::to_string(n)) +
+                     " " + what + " (nodes reached by several paths are placed once per path); at most " +
+                     std::to_string(limit) + " are rendered");
+        };
+        over(e.visits, limits::kMaxNodeVisits, "nodes");
+        over(e.triangles, limits::kMaxImportedTriangles, "triangles");
+        over(e.vertices, limits::kMaxImportedVertices, "vertices");
+    }
+
     void visit(int node, const Mat4& parent, int depth) {
         if (node < 0 || static_cast<size_t>(node) >= model_.nodes.size()) fail("node " + std::to_string(node) + " does not exist");
-        if (depth > 256) fail("the node hierarchy is deeper than 256 levels (a cycle?)");
+        if (depth > kMaxNodeDepth) fail("the node hierarchy is deeper than " + std::to_string(kMaxNodeDepth) + " levels");
         const tinygltf::Node& n = model_.nodes[static_cast<size_t>(node)];
         check_transform(n, node);
         const Mat4 m = mul(parent, local_matrix(n));
