@@ -8,6 +8,7 @@
 #include "core/import/mesh_data.h"
 #include "core/import/model_scene.h"
 #include "foundation/constants.h"
+#include "foundation/message_lines.h"
 #include "stages/render/render_context.h"
 
 namespace sl {
@@ -232,7 +233,12 @@ std::vector<std::string> scene_warnings(const RenderContext& ctx, const SceneFac
         w.push_back(buf);
     }
     light_scale_warnings(s, f.size, w);
-    return w;
+    // One line each, at most kMaxMessageLine characters (a source name can be a megabyte), a
+    // repeated one once with its count.
+    std::vector<std::string> lines;
+    for (const std::string& l : counted_lines(w))
+        lines.push_back(message_line("warning: ", l.rfind("warning: ", 0) == 0 ? l.substr(9) : l));
+    return lines;
 }
 
 }  // namespace sl

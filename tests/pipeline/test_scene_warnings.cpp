@@ -264,3 +264,23 @@ TEST(SceneWarnings, LampsAndEmissiveSurfacesInDifferentUnits) {
     scene["shapes"].back()["light_units"] = "radiometric";
     EXPECT_TRUE(scale_warnings(info_warnings(dir, write_scene(dir, "with_model.json", scene))).empty());
 }
+
+// A scene's warnings name its file; a long path (here 600 characters) still gives lines of at
+// most 300 characters, cut with a note of their length, never lines of any length.
+TEST(SceneWarnings, LinesStayWithinThreeHundredCharactersWhateverTheFileName) {
+    ScratchDir dir;
+    nlohmann::json s = box();
+    s["time"]["end_ns"] = 1.0;
+    s["time"]["frames"] = 4;
+    std::string folder = dir.file("");
+    for (int i = 0; i < 4; ++i) {
+        folder += std::string(150, 'd') + "/";
+        std::filesystem::create_directory(folder);
+    }
+    const std::string scene = write_scene(dir, folder.substr(dir.file("").size()) + "early.json", s);
+    ASSERT_GT(scene.size(), 600u);
+    std::vector<std::string> w = info_warnings(dir, scene);
+    ASSERT_EQ(w.size(), 1u);
+    EXPECT_EQ(w[0].size(), 300u) << w[0];
+    EXPECT_NE(w[0].find("characters in all)"), std::string::npos) << w[0];
+}
