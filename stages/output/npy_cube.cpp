@@ -1,5 +1,9 @@
 #include "stages/output/npy_cube.h"
 
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <limits>
@@ -63,6 +67,75 @@ void NpyCubeWriter::finish() {
     bool ok = std::fflush(file_) == 0;
     ok = (std::fclose(file_) == 0) && ok;
     file_ = nullptr;
+    if (!ok) {
+        discard_file(temp_);
+        throw RuntimeFailure("--cube " + path_ + ": cannot write: " + std::strerror(errno));
+    }
+    commit_file(temp_, path_);
+}
+
+NpyTimeInnerWriter::NpyTimeInnerWriter(const std::string& path, int times, int height, int width, size_t buffer_bytes)
+    : path_(path), temp_(temp_sibling(path)), times_(times), pixels_(static_cast<size_t>(height) * width) {
+    const size_t plane_bytes = pixels_ * 3 * sizeof(float);
+    capacity_ = static_cast<int>(std::clamp<size_t>(buffer_bytes / plane_bytes, 1, static_cast<size_t>(times)));
+    const std::string h = npy_header(height, width, times);
+    data_offset_ = h.size();
+    fd_ = ::open(temp_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    const uint64_t total = data_offset_ + static_cast<uint64_t>(plane_bytes) * times;
+    if (fd_ < 0 || ::write(fd_, h.data(), h.size()) != static_cast<ssize_t>(h.size()) ||
+        ::ftruncate(fd_, static_cast<off_t>(total)) != 0) {
+        const std::string why = std::strerror(errno);
+        if (fd_ >= 0) ::close(fd_);
+        fd_ = -1;
+        discard_file(temp_);
+        throw RuntimeFailure("--cube " + path + ": cannot write: " + why);
+    }
+    buffer_.resize(pixels_ * 3 * static_cast<size_t>(capacity_));
+}
+
+NpyTimeInnerWriter::~NpyTimeInnerWriter() {
+    if (fd_ >= 0) {
+        ::close(fd_);
+        discard_file(temp_);
+    }
+}
+
+void NpyTimeInnerWriter::append(const float* rgb) {
+    if (fd_ < 0 || written_ >= times_) throw RuntimeFailure("--cube " + path_ + ": too many planes");
+    const size_t stride = static_cast<size_t>(capacity_) * 3;
+    float* slot = buffer_.data() + static_cast<size_t>(buffered_) * 3;
+    for (size_t p = 0; p < pixels_; ++p) {
+        slot[p * stride] = rgb[p * 3];
+        slot[p * stride + 1] = rgb[p * 3 + 1];
+        slot[p * stride + 2] = rgb[p * 3 + 2];
+    }
+    ++buffered_;
+    ++written_;
+    if (buffered_ == capacity_ || written_ == times_) flush();
+}
+
+void NpyTimeInnerWriter::flush() {
+    const size_t stride = static_cast<size_t>(capacity_) * 3, run = static_cast<size_t>(buffered_) * 3 * sizeof(float);
+    for (size_t p = 0; p < pixels_; ++p) {
+        const uint64_t at = data_offset_ + (static_cast<uint64_t>(p) * times_ + first_buffered_) * 3 * sizeof(float);
+        const char* from = reinterpret_cast<const char*>(buffer_.data() + p * stride);
+        size_t done = 0;
+        while (done < run) {
+            const ssize_t n = ::pwrite(fd_, from + done, run - done, static_cast<off_t>(at + done));
+            if (n < 0 && errno == EINTR) continue;
+            if (n <= 0) throw RuntimeFailure("--cube " + path_ + ": cannot write: " + std::strerror(errno));
+            done += static_cast<size_t>(n);
+        }
+    }
+    first_buffered_ += buffered_;
+    buffered_ = 0;
+}
+
+void NpyTimeInnerWriter::finish() {
+    if (fd_ < 0) return;
+    if (written_ != times_) throw RuntimeFailure("--cube " + path_ + ": incomplete");
+    const bool ok = ::close(fd_) == 0;
+    fd_ = -1;
     if (!ok) {
         discard_file(temp_);
         throw RuntimeFailure("--cube " + path_ + ": cannot write: " + std::strerror(errno));
