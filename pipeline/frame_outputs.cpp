@@ -205,6 +205,7 @@ std::string FrameOutputs::summary() const {
 }
 
 void FrameOutputs::write_cube_plane(const std::vector<float>& rgb) {
+    if (!wants_cube()) return;  // (an MPI rank other than 0 writes nothing)
     const int plane = planes_seen_++, frames = settings_.timeline.frames;
     if (plane > frames + 1) throw RuntimeFailure("internal error: more cube planes than frames + 2");
     if (cube_) cube_->append(rgb.data());
