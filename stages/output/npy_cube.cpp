@@ -102,30 +102,50 @@ NpyTimeInnerWriter::~NpyTimeInnerWriter() {
 
 void NpyTimeInnerWriter::append(const float* rgb) {
     if (fd_ < 0 || written_ >= times_) throw RuntimeFailure("--cube " + path_ + ": too many planes");
-    const size_t stride = static_cast<size_t>(capacity_) * 3;
-    float* slot = buffer_.data() + static_cast<size_t>(buffered_) * 3;
-    for (size_t p = 0; p < pixels_; ++p) {
-        slot[p * stride] = rgb[p * 3];
-        slot[p * stride + 1] = rgb[p * 3 + 1];
-        slot[p * stride + 2] = rgb[p * 3 + 2];
-    }
+    // Kept as it came (a plain copy); flush() transposes in blocks that stay in cache.
+    std::memcpy(buffer_.data() + static_cast<size_t>(buffered_) * pixels_ * 3, rgb, pixels_ * 3 * sizeof(float));
     ++buffered_;
     ++written_;
     if (buffered_ == capacity_ || written_ == times_) flush();
 }
 
 void NpyTimeInnerWriter::flush() {
-    const size_t stride = static_cast<size_t>(capacity_) * 3, run = static_cast<size_t>(buffered_) * 3 * sizeof(float);
-    for (size_t p = 0; p < pixels_; ++p) {
-        const uint64_t at = data_offset_ + (static_cast<uint64_t>(p) * times_ + first_buffered_) * 3 * sizeof(float);
-        const char* from = reinterpret_cast<const char*>(buffer_.data() + p * stride);
-        size_t done = 0;
-        while (done < run) {
-            const ssize_t n = ::pwrite(fd_, from + done, run - done, static_cast<off_t>(at + done));
-            if (n < 0 && errno == EINTR) continue;
-            if (n <= 0) throw RuntimeFailure("--cube " + path_ + ": cannot write: " + std::strerror(errno));
-            done += static_cast<size_t>(n);
+    // Pixels in blocks: each block's runs (its pixels' buffered times, contiguous in the file per
+    // pixel) are gathered from the planes into `runs`, then written one pwrite per pixel, or one
+    // for the whole block when the buffered times are all the file's (the runs then adjoin).
+    constexpr size_t kBlock = 256;
+    const size_t times = static_cast<size_t>(buffered_), run_values = times * 3;
+    std::vector<float> runs(kBlock * run_values);
+    const bool adjoining = buffered_ == times_;
+    for (size_t p0 = 0; p0 < pixels_; p0 += kBlock) {
+        const size_t n = std::min(kBlock, pixels_ - p0);
+        for (size_t t = 0; t < times; ++t) {
+            const float* plane = buffer_.data() + (t * pixels_ + p0) * 3;
+            for (size_t q = 0; q < n; ++q) {
+                float* to = runs.data() + q * run_values + t * 3;
+                to[0] = plane[q * 3];
+                to[1] = plane[q * 3 + 1];
+                to[2] = plane[q * 3 + 2];
+            }
         }
+        auto write_at = [&](const float* from, size_t bytes, uint64_t at) {
+            size_t done = 0;
+            const char* bytes_from = reinterpret_cast<const char*>(from);
+            while (done < bytes) {
+                const ssize_t w = ::pwrite(fd_, bytes_from + done, bytes - done, static_cast<off_t>(at + done));
+                if (w < 0 && errno == EINTR) continue;
+                if (w <= 0) throw RuntimeFailure("--cube " + path_ + ": cannot write: " + std::strerror(errno));
+                done += static_cast<size_t>(w);
+            }
+        };
+        const uint64_t value_bytes = sizeof(float);
+        if (adjoining) {
+            write_at(runs.data(), n * run_values * value_bytes, data_offset_ + p0 * run_values * value_bytes);
+            continue;
+        }
+        for (size_t q = 0; q < n; ++q)
+            write_at(runs.data() + q * run_values, run_values * value_bytes,
+                     data_offset_ + ((p0 + q) * static_cast<uint64_t>(times_) + first_buffered_) * 3 * value_bytes);
     }
     first_buffered_ += buffered_;
     buffered_ = 0;

@@ -26,8 +26,9 @@ private:
 
 // The frames' bins in mitransient's order, (height, width, time, 3) float32: each pixel's time
 // series is contiguous, so planes arriving one at a time are transposed on their way to disk.
-// Up to `buffer_bytes` of planes (at least one) are kept and then written as one run per pixel
-// (pwrite), into a file sized up front; renamed into place when the last plane is in.
+// Up to `buffer_bytes` of planes (at least one) are kept, then transposed in blocks of pixels
+// and written as one run per pixel (pwrite; one write per block when every plane fitted), into
+// a file sized up front; renamed into place when the last plane is in.
 class NpyTimeInnerWriter {
 public:
     NpyTimeInnerWriter(const std::string& path, int times, int height, int width,
@@ -45,7 +46,7 @@ private:
     int times_, written_ = 0, buffered_ = 0, first_buffered_ = 0, capacity_;
     size_t pixels_;
     uint64_t data_offset_;
-    std::vector<float> buffer_;  // pixel-major: pixel p's buffered times at p * capacity_ * 3
+    std::vector<float> buffer_;  // the buffered planes, as they came: plane t at t * pixels_ * 3
 };
 
 struct NpyCube {
