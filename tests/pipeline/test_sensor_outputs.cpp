@@ -16,6 +16,7 @@
 #include "config/parse_scene.h"
 #include "core/camera.h"
 #include "foundation/constants.h"
+#include "pipeline/resume_command.h"
 #include "stages/output/npy_cube.h"
 #include "tests/pipeline/pipeline_helpers.h"
 
@@ -214,6 +215,25 @@ TEST(SensorOutputsInput, AFrequencyAboveTheBinsNyquistLimitIsWarnedAbout) {
     EXPECT_NE(r.err.find("warning: --phasor 700MHz: above 1/(2 x frame width) = 500MHz"), std::string::npos) << r.err;
     EXPECT_EQ(r.err.find("--phasor 400MHz"), std::string::npos) << r.err;
     EXPECT_TRUE(std::filesystem::exists(dir.file("exr/phasor_700MHz_phase.exr")));
+}
+
+// --resume refuses the outputs that need every section in one run: the command printed after
+// Ctrl-C leaves them out, so that it is accepted.
+TEST(SensorOutputsInput, TheCommandThatContinuesLeavesOutWhatResumeRefuses) {
+    EXPECT_EQ(resume_command({"slowlight", "render", "s.json", "--cube", "c.npy", "--cube-layout", "mitransient",
+                              "--hdf5=t.h5", "--phasor", "20MHz", "--gate", "1:2", "--first-arrival",
+                              "--first-arrival-threshold", "0.5", "--exr-dir", "e", "--", "--gate"}),
+              "slowlight render s.json --exr-dir e --resume -- --gate");
+    ScratchDir dir("sl_sensor_resume");
+    const std::string scene = dir.file("plane.json");
+    std::ofstream(scene) << kScene;
+    ProgramResult r = run_program({"render", scene, "--no-progress", "--passes", "1", "--exr-dir", dir.file("exr"),
+                                   "--first-arrival", "--hdf5", dir.file("t.h5")});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    // The continuing command's own arguments are accepted (nothing is left to render: exit 0).
+    ProgramResult again = run_program({"render", scene, "--no-progress", "--passes", "1", "--exr-dir", dir.file("exr"),
+                                       "--resume"});
+    EXPECT_EQ(again.exit_code, 0) << again.err;
 }
 
 }  // namespace
