@@ -252,7 +252,7 @@ void FrameOutputs::finish() {
     } catch (const RuntimeFailure&) {
         drop_video(std::current_exception());
     }
-    // Every plane went past only when every section was rendered whole (not after Ctrl-C).
+    // Every plane went past unless Ctrl-C came before the last section (one never started has no bins).
     if (all_planes()) {
         if (cube_) cube_->finish();
         if (cube_time_inner_) cube_time_inner_->finish();
