@@ -193,10 +193,10 @@ const Option kOptions[] = {
          else bad_value(f, "must be slowlight or mitransient, got '" + printable(v) + "'");
      }},
     {kRender, "--hdf5", "", "FILE.h5",
-     "also write the frames' bins as HDF5 in tal's layout: H (time, height, width, 3), t_start and delta_t in m",
+     "also write the frames' bins as HDF5 in tal's layout (time first, t_start and delta_t in m)",
      [](RunOptions& r, std::string_view f, std::string_view v) { r.hdf5_path = path_value(f, v); }},
     {kRender, "--phasor", "", "FREQ,...",
-     "also write a continuous-wave ToF camera's amplitude and phase per frequency (20MHz, 1.5GHz) to --exr-dir",
+     "write to --exr-dir a CW ToF camera's amplitude and phase per frequency (20MHz, 1.5GHz)",
      [](RunOptions& r, std::string_view f, std::string_view v) {
          FrequencyList list = parse_frequencies(v);
          if (!list.error.empty()) bad_value(f, list.error);

@@ -1,8 +1,9 @@
 #pragma once
 // The frames' bins as an HDF5 file in the layout of the tal toolkit (time first, its time axis
-// t_start and delta_t in metres of optical path), written through libhdf5 one bin at a time as
-// frames leave the pipeline: a chunked dataset of one bin per chunk, each bin a hyperslab, so
-// the whole cube is never in memory. Written to a temporary name, renamed when complete.
+// t_start and delta_t in metres of optical path), written through libhdf5 (in a plugin,
+// plugins/hdf5_writer/, loaded on first use) one bin at a time as frames leave the pipeline: a
+// chunked dataset of one bin per chunk, each bin a hyperslab, so the whole cube is never in
+// memory. Written to a temporary name, renamed when complete.
 //   /H              float32 (frames, height, width, 3): bin k = radiance arriving in frame k
 //   /H_before, /H_after  float32 (height, width, 3): what arrived before start_ns / at or after end_ns
 //   /t_start, /delta_t   float64 scalars, metres (c · start_ns, c · Δ)
@@ -33,12 +34,12 @@ public:
 
 private:
     void image_dataset(const char* name, const float* rgb);
-    void close() noexcept;
+    [[noreturn]] void fail(const std::string& what);  // closes, removes the temporary, throws
 
     std::string path_, temp_;
     Timeline timeline_;
     int height_, width_, bins_ = 0;
-    int64_t file_ = -1, data_ = -1;  // hid_t
+    void* file_ = nullptr;  // the plugin's handle
 };
 
 }  // namespace sl
