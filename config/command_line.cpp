@@ -8,6 +8,7 @@
 #include "config/limits.h"
 #include "config/nearest_name.h"
 #include "config/parse_scene.h"
+#include "config/sensor_options.h"
 #include "config/text_util.h"
 #include "foundation/errors.h"
 
@@ -184,6 +185,42 @@ const Option kOptions[] = {
     {kRender, "--cube", "", "FILE.npy",
      "also write the time-resolved stack (frames+2, height, width, RGB float32) as NumPy .npy",
      [](RunOptions& r, std::string_view f, std::string_view v) { r.cube_path = path_value(f, v); }},
+    {kRender, "--cube-layout", "", "ORDER",
+     "slowlight (default) or mitransient: (height, width, time, 3), time in optical path length",
+     [](RunOptions& r, std::string_view f, std::string_view v) {
+         if (v == "slowlight") r.cube_layout = CubeLayout::Slowlight;
+         else if (v == "mitransient") r.cube_layout = CubeLayout::Mitransient;
+         else bad_value(f, "must be slowlight or mitransient, got '" + printable(v) + "'");
+     }},
+    {kRender, "--hdf5", "", "FILE.h5",
+     "also write the frames' bins as HDF5 in tal's layout (time first, t_start and delta_t in m)",
+     [](RunOptions& r, std::string_view f, std::string_view v) { r.hdf5_path = path_value(f, v); }},
+    {kRender, "--phasor", "", "FREQ,...",
+     "write to --exr-dir a CW ToF camera's amplitude and phase per frequency (20MHz, 1.5GHz)",
+     [](RunOptions& r, std::string_view f, std::string_view v) {
+         FrequencyList list = parse_frequencies(v);
+         if (!list.error.empty()) bad_value(f, list.error);
+         r.sensors.phasor_hz = list.hz;
+     }},
+    {kRender, "--gate", "", "START:WIDTH",
+     "also write the image a gated camera integrates from START for WIDTH ns to --exr-dir (gate.exr)",
+     [](RunOptions& r, std::string_view f, std::string_view v) {
+         GateWindow g = parse_gate(v);
+         if (!g.error.empty()) bad_value(f, g.error);
+         r.sensors.gate_start_ns = g.start_ns;
+         r.sensors.gate_width_ns = g.width_ns;
+     }},
+    {kRender, "--first-arrival", "", "",
+     "also write per pixel the time (ns) light first arrives, to --exr-dir (first_arrival.exr)",
+     [](RunOptions& r, std::string_view, std::string_view) { r.sensors.first_arrival = true; }},
+    {kRender, "--first-arrival-threshold", "", "X",
+     "the radiance (W/sr/m^2) a frame's bin must exceed to count as an arrival (default 0)",
+     [](RunOptions& r, std::string_view f, std::string_view v) {
+         std::optional<double> x = parse_whole<double>(v);
+         if (!x || !std::isfinite(*x) || !(*x >= 0))
+             bad_value(f, "must be a finite number >= 0, got '" + printable(v) + "'");
+         r.sensors.first_arrival_threshold = *x;
+     }},
     {kRender, "--resume", "", "",
      "continue an interrupted render: frames from --exr-dir, the rest from its checkpoint",
      [](RunOptions& r, std::string_view, std::string_view) { r.resume = true; }},
@@ -301,8 +338,8 @@ std::string commands_text() {
 void require_an_output(const RunOptions& r) {
     // Hours of work that end nowhere help no one: ask for an output first.
     if (r.command == RunOptions::Command::Render && !r.output_given && r.exr_dir.empty() && r.png_dir.empty() &&
-        r.cube_path.empty() && r.stats_path.empty())
-        fail("render writes nothing without an output: add -o out.mp4 (or --exr-dir, --png-dir, --cube, --stats)");
+        r.cube_path.empty() && r.hdf5_path.empty() && r.stats_path.empty())
+        fail("render writes nothing without an output: add -o out.mp4 (or --exr-dir, --png-dir, --cube, --hdf5, --stats)");
     if (r.command == RunOptions::Command::Retime && !r.output_given && r.exr_dir.empty() && r.png_dir.empty())
         fail("retime writes nothing without an output: add -o out.mp4 (or --exr-dir, --png-dir)");
 }
@@ -423,6 +460,13 @@ RunOptions parse_command_line(int argc, const char* const* argv) {
         fail("retime needs a cube file: slowlight retime CUBE.npy -o out.mp4 [--emission ...]");
     if (r.resume && r.exr_dir.empty() && r.checkpoint_dir.empty())
         fail("--resume needs --exr-dir or --checkpoint, where the interrupted render left its state");
+    if (r.sensors.any() && r.exr_dir.empty())
+        fail(std::string(!r.sensors.phasor_hz.empty() ? "--phasor" : r.sensors.gate_start_ns ? "--gate" : "--first-arrival") +
+             " writes its images into --exr-dir: add --exr-dir DIR");
+    if (r.cube_layout != CubeLayout::Slowlight && r.cube_path.empty())
+        fail("--cube-layout needs --cube FILE.npy");
+    if (r.sensors.first_arrival_threshold != 0 && !r.sensors.first_arrival)
+        fail("--first-arrival-threshold needs --first-arrival");
     if (r.exposure && (r.exposure_percentile || r.exposure_follow))
         fail("--exposure fixes the exposure; it cannot be combined with --exposure-percentile or --exposure-follow");
     return r;
@@ -443,7 +487,7 @@ std::string usage_text(const std::string& topic) {
     } else if (topic == "render") {
         s = "slowlight render [SCENE.json] [options]\n"
             "  Renders the scene (no scene: the built-in Cornell box demo). At least one output is needed:\n"
-            "  -o, --exr-dir, --png-dir, --cube or --stats. The scene format is described in\n"
+            "  -o, --exr-dir, --png-dir, --cube, --hdf5 or --stats. The scene format is described in\n"
             "  docs/scene-format.md.\n\nOptions:\n" +
             option_lines(kRender);
     } else if (topic == "info") {

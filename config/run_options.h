@@ -6,6 +6,7 @@
 #include <string>
 
 #include "config/scene_desc.h"  // LightUnits
+#include "config/sensor_options.h"
 
 namespace sl {
 
@@ -34,6 +35,9 @@ struct RunOptions {
     bool output_given = false;
     std::string exr_dir, png_dir, stats_path;
     std::string cube_path;  // --cube: the time-resolved stack as a NumPy .npy file
+    CubeLayout cube_layout = CubeLayout::Slowlight;  // --cube-layout
+    std::string hdf5_path;  // --hdf5: the frames' bins in tal's layout (time first)
+    SensorRequest sensors;  // --phasor, --gate, --first-arrival: images in --exr-dir
     bool resume = false;    // --resume: keep sections whose frames are already in --exr-dir
     std::optional<int> sections;
     std::optional<uint64_t> max_memory_bytes;  // the whole process

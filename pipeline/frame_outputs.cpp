@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <tbb/task_group.h>
 
+#include "foundation/constants.h"
 #include "foundation/errors.h"
 #include "stages/output/atomic_file.h"
 #include "stages/output/exr_frame_check.h"
@@ -55,9 +56,21 @@ double timed(F&& f) {
 void write_cube_sidecar(const OutputSettings& s) {
     nlohmann::json j;
     j["format"] = "slowlight transient cube 1";
-    j["layout"] = "float32 radiance (W sr^-1 m^-2), shape (frames + 2, height, width, 3): plane 0 holds what arrived "
-                  "before start_ns, plane k + 1 what arrived in frame k, the last plane what arrived at or after end_ns; "
-                  "the ambient term is not included";
+    if (s.cube_layout == CubeLayout::Mitransient) {
+        // mitransient's transient array: only the frames' bins, time in optical path length.
+        j["cube_layout"] = "mitransient";
+        j["layout"] = "float32 radiance (W sr^-1 m^-2), shape (height, width, frames, 3): [y, x, k] is what arrived "
+                      "in frame k, whose optical path lengths are [start_opl + k bin_width_opl, start_opl + (k + 1) "
+                      "bin_width_opl) metres; what arrived before start_ns or after end_ns is not included, nor the "
+                      "ambient term";
+    } else {
+        j["cube_layout"] = "slowlight";
+        j["layout"] = "float32 radiance (W sr^-1 m^-2), shape (frames + 2, height, width, 3): plane 0 holds what arrived "
+                      "before start_ns, plane k + 1 what arrived in frame k, the last plane what arrived at or after end_ns; "
+                      "the ambient term is not included";
+    }
+    j["start_opl"] = kSpeedOfLight * s.timeline.start_ns;  // metres: c · t
+    j["bin_width_opl"] = kSpeedOfLight * s.timeline.delta();
     j["start_ns"] = s.timeline.start_ns;
     j["end_ns"] = s.timeline.end_ns;
     j["frames"] = s.timeline.frames;
@@ -93,7 +106,12 @@ FrameOutputs::FrameOutputs(const OutputSettings& s) : settings_(s), exposure_(s.
         v.fps = s.fps;
         encoder_ = VideoEncoder::open(v);
     }
-    if (!s.cube.empty()) cube_ = std::make_unique<NpyCubeWriter>(s.cube, s.timeline.frames + 2, s.height, s.width);
+    if (!s.cube.empty() && s.cube_layout == CubeLayout::Slowlight)
+        cube_ = std::make_unique<NpyCubeWriter>(s.cube, s.timeline.frames + 2, s.height, s.width);
+    if (!s.cube.empty() && s.cube_layout == CubeLayout::Mitransient)
+        cube_time_inner_ = std::make_unique<NpyTimeInnerWriter>(s.cube, s.timeline.frames, s.height, s.width);
+    if (!s.hdf5.empty()) hdf5_ = std::make_unique<Hdf5CubeWriter>(s.hdf5, s.timeline, s.height, s.width);
+    if (s.sensors.any()) sensors_ = std::make_unique<SensorImages>(s.sensors, s.timeline, s.width, s.height);
     if (s.label_time && (encoder_ || !s.png_dir.empty())) label_ = std::make_unique<TimeLabel>(s.width, s.height);
     rgb8_.resize(static_cast<size_t>(s.width) * s.height * 3);
     if (encoder_) encoding_.emplace();
@@ -179,16 +197,45 @@ std::string FrameOutputs::summary() const {
     if (encoder_) add((settings_.video == "-" ? std::string("YUV4MPEG2 to stdout") : settings_.video) + " (" + n + ")");
     if (!settings_.exr_dir.empty()) add(settings_.exr_dir + "/ (" + n + " as EXR, and steady.exr)");
     if (!settings_.png_dir.empty()) add(settings_.png_dir + "/ (" + n + " as PNG, and steady.png)");
-    if (cube_ && cube_->planes_written() == settings_.timeline.frames + 2) add(settings_.cube + " (the cube, and its .json)");
+    if ((cube_ || cube_time_inner_) && all_planes()) add(settings_.cube + " (the cube, and its .json)");
+    if (hdf5_ && all_planes()) add(settings_.hdf5 + " (HDF5)");
+    if (sensors_ && all_planes())
+        add(std::to_string(SensorImages::file_names(settings_.sensors).size()) + " sensor images in " + settings_.exr_dir + "/");
     return s;
 }
 
 void FrameOutputs::write_cube_plane(const std::vector<float>& rgb) {
+    if (!wants_cube()) return;  // (an MPI rank other than 0 writes nothing)
+    const int plane = planes_seen_++, frames = settings_.timeline.frames;
+    if (plane > frames + 1) throw RuntimeFailure("internal error: more cube planes than frames + 2");
     if (cube_) cube_->append(rgb.data());
+    const bool before = plane == 0, after = plane == frames + 1;
+    if (cube_time_inner_ && !before && !after) cube_time_inner_->append(rgb.data());
+    if (hdf5_) {
+        if (before) hdf5_->write_before(rgb.data());
+        else if (after) hdf5_->write_after(rgb.data());
+        else hdf5_->write_bin(plane - 1, rgb.data());
+    }
+    if (sensors_) {
+        if (before) sensors_->add_before(rgb.data());
+        else if (!after) sensors_->add_bin(plane - 1, rgb.data());
+    }
+}
+
+// Once every bin went past: the sensor images, linear float EXRs beside the frames.
+void FrameOutputs::write_sensor_images() {
+    for (const SensorImage& img : sensors_->images()) {
+        std::map<std::string, std::string> meta = settings_.metadata;
+        for (const auto& [k, v] : img.metadata) meta[k] = v;
+        seconds_exr += timed([&] {
+            write_exr((std::filesystem::path(settings_.exr_dir) / img.file).string(), settings_.width,
+                      settings_.height, img.rgb.data(), meta);
+        });
+    }
 }
 
 void FrameOutputs::drop_video(std::exception_ptr failure) {
-    const bool others = !settings_.exr_dir.empty() || !settings_.png_dir.empty() || cube_;
+    const bool others = !settings_.exr_dir.empty() || !settings_.png_dir.empty() || wants_cube();
     if (!others) std::rethrow_exception(failure);  // nothing else to deliver: stop now
     if (!video_failure_) video_failure_ = failure;
     try {
@@ -205,9 +252,21 @@ void FrameOutputs::finish() {
     } catch (const RuntimeFailure&) {
         drop_video(std::current_exception());
     }
-    if (cube_ && cube_->planes_written() == settings_.timeline.frames + 2) {
-        cube_->finish();
-        write_cube_sidecar(settings_);
+    // Every plane went past unless Ctrl-C came before the last section (one never started has no bins).
+    if (all_planes()) {
+        if (cube_) cube_->finish();
+        if (cube_time_inner_) cube_time_inner_->finish();
+        if (cube_ || cube_time_inner_) write_cube_sidecar(settings_);
+        if (hdf5_) {
+            std::map<std::string, std::string> text = settings_.metadata;
+            std::map<std::string, double> numbers{
+                {"start_ns", settings_.timeline.start_ns}, {"end_ns", settings_.timeline.end_ns}, {"fps", settings_.fps}};
+            if (exposure_) numbers["exposure"] = *exposure_;
+            std::map<std::string, uint64_t> integers = settings_.integers;
+            integers["frames"] = static_cast<uint64_t>(settings_.timeline.frames);
+            hdf5_->finish(text, numbers, integers);
+        }
+        if (sensors_) write_sensor_images();
     }
     // The video's failure, once everything else is complete.
     if (video_failure_) std::rethrow_exception(std::exchange(video_failure_, nullptr));

@@ -18,7 +18,9 @@
 #include "pipeline/exposure.h"
 #include "pipeline/frame_sink.h"
 #include "stages/output/exr_header_scan.h"
+#include "stages/output/hdf5_cube.h"
 #include "stages/output/npy_cube.h"
+#include "stages/output/sensor_images.h"
 #include "stages/output/time_label.h"
 #include "stages/output/video_encoder.h"
 
@@ -28,6 +30,10 @@ struct OutputSettings {
     std::string video;  // "" for none, "-" for stdout
     std::string exr_dir, png_dir;
     std::string cube;   // "" for none
+    CubeLayout cube_layout = CubeLayout::Slowlight;
+    std::string hdf5;   // "" for none
+    SensorRequest sensors;  // images written to exr_dir once every bin went past
+    std::map<std::string, uint64_t> integers;  // the HDF5 file's whole-number attributes (seed, passes, ...)
     int width = 0, height = 0;
     double fps = 24;
     Timeline timeline;  // the frames and their edges (EXR headers, time labels, the cube's side-car)
@@ -50,7 +56,8 @@ public:
     }
     std::optional<double> exposure() const override { return exposure_; }
     double frame_exposure(int index) const;
-    bool wants_cube() const override { return cube_ != nullptr; }
+    // The cube's planes feed the cube, the HDF5 file and the sensor images.
+    bool wants_cube() const override { return cube_ || cube_time_inner_ || hdf5_ || sensors_; }
 
     // `on_disk`: the EXR is already there (a resumed section), so only the rest is written.
     // `extra`: more EXR header entries for this frame (e.g. the passes it got).
@@ -84,6 +91,12 @@ private:
     std::unique_ptr<VideoEncoder> encoder_;
     std::exception_ptr video_failure_;  // the dropped video's, thrown by finish()
     std::unique_ptr<NpyCubeWriter> cube_;
+    std::unique_ptr<NpyTimeInnerWriter> cube_time_inner_;  // --cube-layout mitransient
+    std::unique_ptr<Hdf5CubeWriter> hdf5_;
+    std::unique_ptr<SensorImages> sensors_;
+    int planes_seen_ = 0;  // the cube's planes so far: 0 before start_ns, k + 1 frame k, frames + 1 after
+    bool all_planes() const { return planes_seen_ == settings_.timeline.frames + 2; }
+    void write_sensor_images();
     std::vector<uint8_t> rgb8_;
     // The encoder, on a thread of its own: with one thread for the whole chain it set the pace
     // of a run's tail (x264 took 5 of its 7 ms a 512x512 frame). Last: it stops (ending its

@@ -119,7 +119,17 @@ MemoryBaseline memory_baseline(const SceneDesc& scene, const RunOptions& options
     uint64_t per_pixel = 3 * sizeof(double) + 3 * rgb_float + rgb_float;
     const bool eight_bit = !options.output.empty() || !options.png_dir.empty();
     if (eight_bit) per_pixel += 3 * sizeof(uint8_t);
+    // The sensor images' sums (stages/output/sensor_images.h): two doubles per value and
+    // frequency, one for the gate, a float for the first arrival.
+    const SensorRequest& sensors = options.sensors;
+    per_pixel += 3 * (2 * sizeof(double) * sensors.phasor_hz.size() + (sensors.gate_start_ns ? sizeof(double) : 0) +
+                      (sensors.first_arrival ? sizeof(float) : 0));
     b.frames = pixels * per_pixel;
+    // mitransient's order: up to 64 MiB of bins kept for the transpose (NpyTimeInnerWriter).
+    if (!options.cube_path.empty() && options.cube_layout == CubeLayout::Mitransient) {
+        const uint64_t plane = pixels * rgb_float, times = static_cast<uint64_t>(std::max(1, scene.time.frames));
+        b.frames += plane * std::clamp<uint64_t>((uint64_t(64) << 20) / std::max<uint64_t>(plane, 1), 1, times);
+    }
 
     // The encoder: the codec's own state and pictures, and our two staged frames in its pixel
     // format (one converted while the other is encoded).

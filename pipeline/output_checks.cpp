@@ -14,6 +14,7 @@
 #include "config/text_util.h"
 #include "foundation/errors.h"
 #include "stages/output/atomic_file.h"
+#include "stages/output/sensor_images.h"
 
 namespace sl {
 namespace fs = std::filesystem;
@@ -131,7 +132,14 @@ std::vector<OutputRequest> outputs_of(const RunOptions& o) {
         out.push_back({"--cube", o.cube_path, false, ""});
         out.push_back({"--cube", o.cube_path + ".json", false, ""});  // its side-car
     }
-    if (!o.exr_dir.empty()) out.push_back({"--exr-dir", o.exr_dir, true, kExrNames});
+    if (!o.hdf5_path.empty()) out.push_back({"--hdf5", o.hdf5_path, false, ""});
+    if (!o.exr_dir.empty()) {
+        // The sensor images go into --exr-dir too, under names of their own.
+        std::string names = kExrNames;
+        for (const std::string& n : SensorImages::file_names(o.sensors))
+            names += "|" + std::regex_replace(n, std::regex(R"([.+])"), R"(\$&)");
+        out.push_back({"--exr-dir", o.exr_dir, true, names});
+    }
     if (!o.png_dir.empty()) out.push_back({"--png-dir", o.png_dir, true, kPngNames});
     return out;
 }

@@ -130,6 +130,13 @@ void RenderCommand::read_and_check() {
     check_fits_machine(plan_);
     if (o_.resume && !o_.cube_path.empty())
         throw InputError("command line: --cube cannot be combined with --resume (the cube needs every section)");
+    if (o_.resume && (!o_.hdf5_path.empty() || o_.sensors.any()))
+        throw InputError(std::string("command line: ") +
+                         (!o_.hdf5_path.empty() ? "--hdf5 cannot be combined with --resume (it needs"
+                                                : "the sensor images (--phasor, --gate, --first-arrival) cannot be "
+                                                  "combined with --resume (they need") +
+                         " every section's bins)");
+    check_sensor_request(o_.sensors, timeline_of(scene_), root_);
     check_outputs(outputs_of(o_), scene_.input_files);  // no clobbered input, nothing unwritable found late
     ctx_ = std::make_unique<RenderContext>(scene_);  // the BVH: input errors here come before any output exists
     ctx_->exchange = ex_;

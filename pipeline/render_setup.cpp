@@ -1,8 +1,10 @@
 #include "pipeline/render_setup.h"
 
+#include <cstdio>
 #include <filesystem>
 #include <system_error>
 
+#include "config/text_util.h"
 #include "foundation/errors.h"
 #include "pipeline/exposure.h"
 #include "pipeline/resume.h"
@@ -20,6 +22,25 @@ void check_rank_options(RunOptions& o, RankExchange* ex) {
                          ": a render on several ranks is started by an MPI launcher (mpirun -np N slowlight render ...); "
                          "--ranks is for info");
     }
+}
+
+void check_sensor_request(const SensorRequest& sensors, const Timeline& timeline, bool print) {
+    if (sensors.gate_start_ns) {
+        const double a = *sensors.gate_start_ns, b = a + *sensors.gate_width_ns;
+        // Only the frames' bins are resolved in time: a gate must lie within them.
+        const double slack = Timeline::kWholeTolerance * timeline.delta();
+        if (a < timeline.start_ns - slack || b > timeline.end_ns + slack)
+            throw InputError("command line: --gate " + format_number(a) + ":" + format_number(*sensors.gate_width_ns) +
+                             ": the gate [" + format_number(a) + ", " + format_number(b) +
+                             ") ns must lie within the time window [" + format_number(timeline.start_ns) + ", " +
+                             format_number(timeline.end_ns) + ") ns");
+    }
+    const double nyquist_hz = 1e9 / (2 * timeline.delta());
+    for (double f : sensors.phasor_hz)
+        if (print && f > nyquist_hz)
+            std::fprintf(stderr, "warning: --phasor %s: above 1/(2 x frame width) = %s, the frames' bins cannot resolve "
+                                 "it (its phase aliases); use more frames or a lower frequency\n",
+                         frequency_label(f).c_str(), frequency_label(nyquist_hz).c_str());
 }
 
 void check_preview_path(const std::string& path) {
@@ -40,6 +61,13 @@ OutputSettings output_settings(const RunOptions& o, const SceneDesc& scene, cons
     out.exr_dir = o.exr_dir;
     out.png_dir = o.png_dir;
     out.cube = o.cube_path;
+    out.cube_layout = o.cube_layout;
+    out.hdf5 = o.hdf5_path;
+    out.sensors = o.sensors;
+    out.integers = {{"seed", scene.render.seed},
+                    {"passes", static_cast<uint64_t>(scene.render.passes)},
+                    {"photons_per_pass", static_cast<uint64_t>(scene.render.photons_per_pass)},
+                    {"camera_tof", scene.render.camera_tof ? 1u : 0u}};
     out.width = scene.camera.width;
     out.height = scene.camera.height;
     out.fps = scene.time.fps;

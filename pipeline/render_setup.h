@@ -21,6 +21,10 @@ void check_rank_options(RunOptions& o, RankExchange* ex);
 
 // --preview must name a file in an existing directory (RuntimeFailure otherwise): checked
 // before rendering, since a preview that cannot be written must not stop a render.
+// --gate must lie within the time window (bad input otherwise); a --phasor frequency above
+// 1/(2Δ) is aliased by the frames' bins: a warning line (printed when `print`).
+void check_sensor_request(const SensorRequest& sensors, const Timeline& timeline, bool print);
+
 void check_preview_path(const std::string& path);
 
 OutputSettings output_settings(const RunOptions& o, const SceneDesc& scene, const RenderContext& ctx,

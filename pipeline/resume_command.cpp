@@ -16,7 +16,47 @@ std::string shell_quote(const std::string& arg) {
     return out + "'";
 }
 
-std::string resume_command(const std::vector<std::string>& argv) {
+namespace {
+
+// Outputs that need every section's bins in one run, which --resume refuses: the command that
+// continues leaves them out (with their values), so that it is accepted.
+bool needs_every_section(const std::string& arg, bool& takes_value) {
+    static const std::pair<std::string_view, bool> kFlags[] = {
+        {"--cube", true},   {"--cube-layout", true}, {"--hdf5", true},
+        {"--phasor", true}, {"--gate", true},        {"--first-arrival", false},
+        {"--first-arrival-threshold", true}};
+    for (const auto& [flag, value] : kFlags) {
+        if (arg == flag) {
+            takes_value = value;
+            return true;
+        }
+        if (value && arg.size() > flag.size() && arg.compare(0, flag.size(), flag) == 0 && arg[flag.size()] == '=') {
+            takes_value = false;  // --flag=VALUE: one argument
+            return true;
+        }
+    }
+    return false;
+}
+
+std::vector<std::string> resumable(const std::vector<std::string>& argv) {
+    std::vector<std::string> kept;
+    bool after_dashes = false;
+    for (size_t i = 0; i < argv.size(); ++i) {
+        bool takes_value = false;
+        if (!after_dashes && needs_every_section(argv[i], takes_value)) {
+            if (takes_value) ++i;
+            continue;
+        }
+        after_dashes |= argv[i] == "--";
+        kept.push_back(argv[i]);
+    }
+    return kept;
+}
+
+}  // namespace
+
+std::string resume_command(const std::vector<std::string>& given) {
+    const std::vector<std::string> argv = resumable(given);
     std::string out;
     bool has_resume = false, after_dashes = false;
     for (const std::string& a : argv) {

@@ -38,6 +38,10 @@ CubeInfo read_sidecar(const std::string& cube_path) {
     Json j = parse_json_text(text, path);
     JsonObject top(j, "", path);
     CubeInfo c;
+    // A cube in mitransient's order holds the frames' bins only, pixel by pixel: not ours to retime.
+    if (top.has("cube_layout") && top.string("cube_layout") != "slowlight")
+        top.fail("cube_layout", "retime reads cubes in slowlight's order (render --cube without --cube-layout "
+                                "mitransient), got '" + printable(top.string("cube_layout")) + "'");
     c.start_ns = top.number("start_ns", Range::any());
     c.end_ns = top.number("end_ns", Range::any());
     c.fps = top.number("fps", Range::closed(limits::kMinFps, limits::kMaxFps));
@@ -73,7 +77,7 @@ int retime(const RunOptions& o) {
 
     check_outputs(outputs_of(o), {o.scene_path, o.scene_path + ".json"});
     NpyCube cube = read_npy_cube(o.scene_path);
-    CubeInfo info = read_sidecar(o.scene_path);
+    CubeInfo info = read_sidecar(o.scene_path);  // refuses a cube in mitransient's order
     if (cube.planes != info.frames + 2 || cube.width != info.width || cube.height != info.height)
         throw InputError(o.scene_path + ": the array's shape does not match its side-car file");
     require_an_output(o);

@@ -12,6 +12,7 @@ packages=(
   libavformat-dev libavcodec-dev libavfilter-dev libswscale-dev libavutil-dev ffmpeg fonts-dejavu-core
   libxxhash-dev xxhash nlohmann-json3-dev libtinygltf-dev libgtest-dev libbenchmark-dev
   gnuplot-nox libopenmpi-dev openmpi-bin
+  libhdf5-dev python3-h5py python3-numpy
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -1,5 +1,9 @@
 #include "stages/output/npy_cube.h"
 
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <limits>
@@ -63,6 +67,95 @@ void NpyCubeWriter::finish() {
     bool ok = std::fflush(file_) == 0;
     ok = (std::fclose(file_) == 0) && ok;
     file_ = nullptr;
+    if (!ok) {
+        discard_file(temp_);
+        throw RuntimeFailure("--cube " + path_ + ": cannot write: " + std::strerror(errno));
+    }
+    commit_file(temp_, path_);
+}
+
+NpyTimeInnerWriter::NpyTimeInnerWriter(const std::string& path, int times, int height, int width, size_t buffer_bytes)
+    : path_(path), temp_(temp_sibling(path)), times_(times), pixels_(static_cast<size_t>(height) * width) {
+    const size_t plane_bytes = pixels_ * 3 * sizeof(float);
+    capacity_ = static_cast<int>(std::clamp<size_t>(buffer_bytes / plane_bytes, 1, static_cast<size_t>(times)));
+    const std::string h = npy_header(height, width, times);
+    data_offset_ = h.size();
+    fd_ = ::open(temp_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    const uint64_t total = data_offset_ + static_cast<uint64_t>(plane_bytes) * times;
+    if (fd_ < 0 || ::write(fd_, h.data(), h.size()) != static_cast<ssize_t>(h.size()) ||
+        ::ftruncate(fd_, static_cast<off_t>(total)) != 0) {
+        const std::string why = std::strerror(errno);
+        if (fd_ >= 0) ::close(fd_);
+        fd_ = -1;
+        discard_file(temp_);
+        throw RuntimeFailure("--cube " + path + ": cannot write: " + why);
+    }
+    buffer_.resize(pixels_ * 3 * static_cast<size_t>(capacity_));
+}
+
+NpyTimeInnerWriter::~NpyTimeInnerWriter() {
+    if (fd_ >= 0) {
+        ::close(fd_);
+        discard_file(temp_);
+    }
+}
+
+void NpyTimeInnerWriter::append(const float* rgb) {
+    if (fd_ < 0 || written_ >= times_) throw RuntimeFailure("--cube " + path_ + ": too many planes");
+    // Kept as it came (a plain copy); flush() transposes in blocks that stay in cache.
+    std::memcpy(buffer_.data() + static_cast<size_t>(buffered_) * pixels_ * 3, rgb, pixels_ * 3 * sizeof(float));
+    ++buffered_;
+    ++written_;
+    if (buffered_ == capacity_ || written_ == times_) flush();
+}
+
+void NpyTimeInnerWriter::flush() {
+    // Pixels in blocks: each block's runs (its pixels' buffered times, contiguous in the file per
+    // pixel) are gathered from the planes into `runs`, then written one pwrite per pixel, or one
+    // for the whole block when the buffered times are all the file's (the runs then adjoin).
+    constexpr size_t kBlock = 256;
+    const size_t times = static_cast<size_t>(buffered_), run_values = times * 3;
+    std::vector<float> runs(kBlock * run_values);
+    const bool adjoining = buffered_ == times_;
+    for (size_t p0 = 0; p0 < pixels_; p0 += kBlock) {
+        const size_t n = std::min(kBlock, pixels_ - p0);
+        for (size_t t = 0; t < times; ++t) {
+            const float* plane = buffer_.data() + (t * pixels_ + p0) * 3;
+            for (size_t q = 0; q < n; ++q) {
+                float* to = runs.data() + q * run_values + t * 3;
+                to[0] = plane[q * 3];
+                to[1] = plane[q * 3 + 1];
+                to[2] = plane[q * 3 + 2];
+            }
+        }
+        auto write_at = [&](const float* from, size_t bytes, uint64_t at) {
+            size_t done = 0;
+            const char* bytes_from = reinterpret_cast<const char*>(from);
+            while (done < bytes) {
+                const ssize_t w = ::pwrite(fd_, bytes_from + done, bytes - done, static_cast<off_t>(at + done));
+                if (w < 0 && errno == EINTR) continue;
+                if (w <= 0) throw RuntimeFailure("--cube " + path_ + ": cannot write: " + std::strerror(errno));
+                done += static_cast<size_t>(w);
+            }
+        };
+        const uint64_t value_bytes = sizeof(float);
+        if (adjoining) {
+            write_at(runs.data(), n * run_values * value_bytes, data_offset_ + p0 * run_values * value_bytes);
+            continue;
+        }
+        for (size_t q = 0; q < n; ++q)
+            write_at(runs.data() + q * run_values, run_values * value_bytes,
+                     data_offset_ + ((p0 + q) * static_cast<uint64_t>(times_) + first_buffered_) * 3 * value_bytes);
+    }
+    first_buffered_ += buffered_;
+    buffered_ = 0;
+}
+
+void NpyTimeInnerWriter::finish() {
+    if (fd_ < 0) return;
+    if (written_ != times_) throw RuntimeFailure("--cube " + path_ + ": incomplete");
+    const bool ok = ::close(fd_) == 0;
+    fd_ = -1;
     if (!ok) {
         discard_file(temp_);
         throw RuntimeFailure("--cube " + path_ + ": cannot write: " + std::strerror(errno));

@@ -32,13 +32,15 @@ protected:
     ScratchDir dir{"sl_mpi"};
 };
 
-// Renders `args` in one process and on `ranks` ranks, with EXR frames, the cube and a video
-// on stdout (YUV4MPEG2: the decoded pictures themselves), and expects every output equal.
+// Renders `args` in one process and on `ranks` ranks, with EXR frames, the cube, the HDF5 file,
+// the sensor images and a video on stdout (YUV4MPEG2: the decoded pictures themselves), and expects every output equal.
 void expect_same_render(const ScratchDir& dir, const std::vector<std::string>& args, std::vector<int> rank_counts,
                         const std::vector<std::string>& launcher_args = {}) {
     auto outputs = [&](const std::string& tag) {
         std::vector<std::string> a = args;
         a.insert(a.end(), {"--no-progress", "--exr-dir", dir.file(tag), "--cube", dir.file(tag + ".npy"), "-o", "-"});
+        // The files other tools read and the sensor images (in --exr-dir, compared with the frames).
+        a.insert(a.end(), {"--hdf5", dir.file(tag + ".h5"), "--phasor", "20MHz,300MHz", "--first-arrival"});
         return a;
     };
     ProgramResult one = run_program(outputs("one"), dir.file("one.y4m"));
@@ -70,6 +72,7 @@ void expect_same_render(const ScratchDir& dir, const std::vector<std::string>& a
                           << " on ranks, first difference at byte " << at << "\n" << many.err;
         };
         same(file_bytes(dir.file("one.npy")), file_bytes(dir.file(tag + ".npy")), "cube");
+        same(file_bytes(dir.file("one.h5")), file_bytes(dir.file(tag + ".h5")), "HDF5 file");
         same(video, file_bytes(dir.file(tag + ".y4m")), "decoded video");
     }
 }

@@ -87,5 +87,25 @@ TEST(Cube, RetimeRefusesAPulseThatIsNotWholeBuckets) {
     fs::remove_all(dir);
 }
 
+// A cube in mitransient's order (height, width, time, 3) is a valid .npy of another shape: retime
+// must tell it by its side-car, not read its rows as time planes.
+TEST(Cube, RetimeRefusesACubeInMitransientsOrder) {
+    std::string dir = test::fresh_dir("cube_mitransient");
+    auto args = scene_args(dir);
+    args.insert(args.end(), {"--cube", dir + "/m.npy", "--cube-layout", "mitransient"});
+    test::RunResult made = test::run(args, dir);
+    ASSERT_EQ(made.status, 0) << made.err;
+    NpyCube cube = read_npy_cube(dir + "/m.npy");  // read as (planes, height, width, 3): rows, columns, frames
+    EXPECT_EQ(cube.planes, 24);
+    EXPECT_EQ(cube.height, 32);
+    EXPECT_EQ(cube.width, 12);
+    test::RunResult r = test::run({"retime", dir + "/m.npy", "-o", dir + "/x.mp4"}, dir);
+    EXPECT_EQ(r.status, 2);
+    ASSERT_EQ(test::error_lines(r.err).size(), 1u) << r.err;
+    EXPECT_NE(r.err.find("key 'cube_layout': retime reads cubes in slowlight's order"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir + "/x.mp4"));
+    fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace sl
