@@ -9,8 +9,13 @@ namespace {
 constexpr uint64_t kSaturated = uint64_t(1) << 62;
 uint64_t add(uint64_t a, uint64_t b) { return std::min(kSaturated, a + b); }  // both <= 2^62: no wrap
 
+// An accessor's element count, at most its view's byte length (an element takes a byte at
+// least): a forged count is left to the accessor's own check, which names it when it is read.
 uint64_t accessor_count(const tinygltf::Model& m, int index) {
-    return index >= 0 && static_cast<size_t>(index) < m.accessors.size() ? m.accessors[static_cast<size_t>(index)].count : 0;
+    if (index < 0 || static_cast<size_t>(index) >= m.accessors.size()) return 0;
+    const tinygltf::Accessor& a = m.accessors[static_cast<size_t>(index)];
+    if (a.bufferView < 0 || static_cast<size_t>(a.bufferView) >= m.bufferViews.size()) return 0;
+    return std::min<uint64_t>(a.count, m.bufferViews[static_cast<size_t>(a.bufferView)].byteLength);
 }
 
 // One placement of a mesh: its primitives' triangles and vertices, as the accessors declare them.

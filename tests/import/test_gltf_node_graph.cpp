@@ -71,7 +71,10 @@ TEST(GltfNodeGraph, TrianglesAreCountedAgainstTheirOwnBound) {
     // 2^23 placements (within the node bound) of an index accessor that claims 2^25 corners.
     const std::string m = error_of(graph_file(dir, [](json& j) {
         doubling_chain(j, 22, true);
-        j["accessors"][3]["count"] = 1u << 25;  // the primitive's indices (never read: refused first)
+        // The primitive's indices, and a view that claims room for them (neither is read: the
+        // count refuses the file first; a count beyond its view is left to the accessor's check).
+        j["accessors"][3]["count"] = 1u << 25;
+        j["bufferViews"][j["accessors"][3]["bufferView"].get<size_t>()]["byteLength"] = 1u << 27;
     }));
     EXPECT_NE(m.find("its node graph places " + std::to_string((uint64_t(1) << 22) * ((1u << 25) / 3)) + " triangles"),
               std::string::npos) << m;
