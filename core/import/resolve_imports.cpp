@@ -8,7 +8,6 @@
 #include "foundation/errors.h"
 #include "foundation/message_lines.h"
 #include "core/import/imported_file.h"
-#include "core/material_stand_in.h"
 #include "core/placement.h"
 #include "core/texture.h"
 #include "core/texture_load.h"
@@ -49,16 +48,6 @@ ImportedFile read_file(const ShapeDesc& s, const std::string& scene_source) {
 void resolve_imports(SceneDesc& scene) {
     if (scene.imports_resolved) return;
     std::set<std::string> warned;
-    // The scene file's own GGX materials that a shape uses, drawn by a stand-in: one line each
-    // for what that loses (core/material_stand_in.h).
-    for (size_t i = 0; i < scene.materials.size(); ++i) {
-        bool used = false;
-        for (const ShapeDesc& s : scene.shapes) used |= s.material == static_cast<int>(i);
-        const std::string lost = used ? approximation_note(scene.materials[i]) : std::string();
-        if (!lost.empty())
-            std::fprintf(stderr, "warning: %s: material '%s': %s\n", scene.source.c_str(),
-                         scene.materials[i].name.c_str(), lost.c_str());
-    }
     std::vector<std::string> seen_files;
     for (ShapeDesc& s : scene.shapes) {
         if (!is_import(s) || s.mesh) continue;
