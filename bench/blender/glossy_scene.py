@@ -1,14 +1,15 @@
-# Builds the glossy-metal scene in Blender, exports it with the stock glTF exporter at its default
+# Builds a glossy scene in Blender, exports it with the stock glTF exporter at its default
 # settings, and renders it with Cycles for slowlight's comparison (bench/blender/README.md).
 #
-#   blender -b --factory-startup -P bench/blender/glossy_metal_scene.py -- OUT_DIR [SAMPLES] [SEED ...]
+#   blender -b --factory-startup -P bench/blender/glossy_scene.py -- KIND OUT_DIR [SAMPLES] [SEED ...]
 #
+# KIND: metal (the cube a Principled metal: base 0.8, metallic 1, roughness 0.3) or plastic (a
+# Principled dielectric: base (0.8, 0.1, 0.1), metallic 0, roughness 0.2, specular 0.5).
 # Scene (Blender's Z up, metres): a 6 x 6 m floor (Principled, base 0.5, specular 0: a Lambertian
 # base alone in the exported file; Cycles gets a Diffuse BSDF), a 1 m cube standing on it turned 30 degrees
-# (Principled metal: base 0.8, metallic 1, roughness 0.3, its distribution set to single-scattering
-# GGX in Cycles, as slowlight's), a 3 W/m^2 sun 45 degrees high, a camera 3.5 m away, 128 x 96.
-# Cycles renders the metal's Principled BSDF itself. Writes OUT_DIR/glossy_metal.glb,
-# OUT_DIR/glossy_metal_cycles_seedN.exr and OUT_DIR/glossy_metal_regions.json.
+# (its Principled distribution set to single-scattering GGX in Cycles, as slowlight's), a 3 W/m^2 sun 45 degrees high, a camera 3.5 m away, 128 x 96.
+# Cycles renders the cube's Principled BSDF itself. Writes OUT_DIR/glossy_KIND.glb,
+# OUT_DIR/glossy_KIND_cycles_seedN.exr and OUT_DIR/glossy_KIND_regions.json.
 import json
 import math
 import os
@@ -18,19 +19,26 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import scene_common as sc  # noqa: E402
 
 argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
-out_dir = os.path.abspath(argv[0] if argv else "out")
-samples = int(argv[1]) if len(argv) > 1 else 1024
-seeds = [int(s) for s in argv[2:]] or [1, 2]
+kind = argv[0] if argv else "metal"
+assert kind in ("metal", "plastic"), kind
+stem = "glossy_" + kind
+out_dir = os.path.abspath(argv[1] if len(argv) > 1 else "out")
+samples = int(argv[2]) if len(argv) > 2 else 1024
+seeds = [int(s) for s in argv[3:]] or [1, 2]
 os.makedirs(out_dir, exist_ok=True)
 W, H = 128, 96
 
 sc.reset(W, H)
 floor_mat = sc.principled("floor", 0.5)
 floor_mat.node_tree.nodes["Principled BSDF"].inputs["Specular"].default_value = 0.0
-metal = sc.principled("metal", 0.8)
+metal = sc.principled(kind, 0.8)
 bsdf = metal.node_tree.nodes["Principled BSDF"]
-bsdf.inputs["Metallic"].default_value = 1.0
-bsdf.inputs["Roughness"].default_value = 0.3
+if kind == "metal":
+    bsdf.inputs["Metallic"].default_value = 1.0
+    bsdf.inputs["Roughness"].default_value = 0.3
+else:
+    bsdf.inputs["Base Color"].default_value = (0.8, 0.1, 0.1, 1)
+    bsdf.inputs["Roughness"].default_value = 0.2
 bsdf.distribution = "GGX"
 sc.mesh("floor", [(-3, -3, 0), (3, -3, 0), (3, 3, 0), (-3, 3, 0)], [(0, 1, 2, 3)], floor_mat)
 c, s = math.cos(math.radians(30)), math.sin(math.radians(30))
@@ -40,7 +48,7 @@ faces = [(3, 2, 1, 0), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (
 sc.mesh("cube", verts, faces, metal)
 sc.sun(3.0, (math.radians(45), 0, math.radians(-60)), (3, -3, 4))
 sc.camera((0, -3.5, 1.6), (math.radians(72), 0, 0), math.radians(50))
-sc.export(os.path.join(out_dir, "glossy_metal.glb"))
+sc.export(os.path.join(out_dir, stem + ".glb"))
 
 
 def box(point, half):
@@ -55,11 +63,11 @@ regions = {
     "floor_left_of_cube": box((-1.4, -0.3, 0), 4),
     "floor_right_of_cube": box((1.4, -0.3, 0), 4),
 }
-with open(os.path.join(out_dir, "glossy_metal_regions.json"), "w") as f:
+with open(os.path.join(out_dir, stem + "_regions.json"), "w") as f:
     json.dump({"width": W, "height": H, "regions": regions}, f, indent=1)
 
 # Principled v1's diffuse is Burley's, not Lambert's: the floor is swapped for a Diffuse BSDF of its
 # colour (the exported file keeps it Principled with no specular layer: a Lambertian base).
 sc.swap_to_diffuse(["floor"])
-sc.render_cycles(out_dir, "glossy_metal", samples, seeds)
-print("glossy_metal: wrote", out_dir)
+sc.render_cycles(out_dir, stem, samples, seeds)
+print(stem + ": wrote", out_dir)
