@@ -27,9 +27,8 @@ struct CameraDesc {
     int height = 256;
 };
 
-// Diffuse, Mirror and Dielectric are the surfaces the estimator draws exactly; the GGX
-// materials (core/bsdf/) are drawn by a stand-in among those three until it evaluates their
-// BSDFs (core/material_stand_in.h says which, and warns when it is an approximation).
+// Diffuse, Mirror and Dielectric are smooth or Lambertian surfaces; the GGX materials are
+// evaluated by their BSDFs (core/bsdf/, built into core/material_table.h).
 enum class MaterialType { Diffuse, Mirror, Dielectric, Conductor, RoughDielectric, MetallicRoughness };
 
 struct MaterialDesc {

@@ -8,22 +8,54 @@
 #include <vector>
 
 #include "config/scene_desc.h"
-#include "core/material_stand_in.h"
+#include "core/bsdf/material_bsdf.h"
 #include "core/texture.h"
 
 namespace sl {
 
+// How camera paths treat a GGX surface (docs/materials.md, "In the renderer"): they follow a
+// sampled direction through glossy ones (smooth enough that a photon estimate would blur them,
+// or with an inside: rough glass), and end on the others with a visible point that weighs
+// direct light and photons by the BSDF. Photons are stored only where visible points may be.
+enum class GlossyUse : uint8_t { None, Follow, Gather };
+
+// Below this roughness a conductor (or a pure metal) is followed by camera paths.
+inline constexpr float kFollowBelowRoughness = 0.5f;
+
 struct SurfaceMaterial {
-    MaterialType type = MaterialType::Diffuse;  // Diffuse, Mirror or Dielectric (core/material_stand_in.h)
-    Vec3 albedo;       // diffuse
+    MaterialType type = MaterialType::Diffuse;
+    Vec3 albedo;       // diffuse (and metallic-roughness: the base colour its texture multiplies)
     Vec3 reflectance;  // mirror
-    float ior = 1.5f;  // dielectric
+    float ior = 1.5f;  // dielectric, rough dielectric, metallic-roughness with transmission
     Vec3 emission;     // W sr^-1 m^-2: the surface is an area light
     const TextureImage* albedo_texture = nullptr;    // multiplies albedo
     const TextureImage* emission_texture = nullptr;  // multiplies emission
     bool double_sided = false;  // emission leaves both faces (else the front)
+    // GGX kinds (conductor, rough dielectric, metallic-roughness): their BSDF and how camera
+    // paths use it.
+    GlossyUse glossy = GlossyUse::None;
+    bsdf::Bsdf bsdf;
     bool emits() const { return !is_black(emission); }
 };
+
+inline GlossyUse glossy_use(const MaterialDesc& d) {
+    switch (d.type) {
+    case MaterialType::Diffuse:
+    case MaterialType::Mirror:
+    case MaterialType::Dielectric:
+        return GlossyUse::None;
+    case MaterialType::RoughDielectric:
+        return GlossyUse::Follow;
+    case MaterialType::Conductor:
+        return d.roughness < kFollowBelowRoughness ? GlossyUse::Follow : GlossyUse::Gather;
+    case MaterialType::MetallicRoughness:
+        if (d.transmission > 0) return GlossyUse::Follow;  // it has an inside, as glass does
+        // A metal has no diffuse base: like a conductor. Anything with a diffuse base gathers.
+        return d.metallic >= 1 && d.roughness < kFollowBelowRoughness ? GlossyUse::Follow
+                   : GlossyUse::Gather;
+    }
+    return GlossyUse::None;
+}
 
 class MaterialTable {
 public:
@@ -35,9 +67,22 @@ public:
         };
         materials_.reserve(scene.materials.size());
         for (const MaterialDesc& d : scene.materials) {
-            const StandIn s = stand_in(d);  // a GGX material as one of the three surfaces
-            materials_.push_back({s.type, s.albedo, s.reflectance, s.ior, d.emission, image(d.albedo_texture),
-                                  image(d.emission_texture), d.double_sided});
+            SurfaceMaterial m;
+            m.type = d.type;
+            m.albedo = d.albedo;
+            m.reflectance = d.reflectance;
+            m.ior = d.ior;
+            m.emission = d.emission;
+            m.albedo_texture = image(d.albedo_texture);
+            m.emission_texture = image(d.emission_texture);
+            m.double_sided = d.double_sided;
+            m.glossy = glossy_use(d);
+            if (m.glossy != GlossyUse::None) {
+                m.bsdf = *bsdf_of(d);
+                // Only the metallic-roughness base colour has a texture.
+                if (d.type != MaterialType::MetallicRoughness) m.albedo_texture = nullptr;
+            }
+            materials_.push_back(m);
         }
     }
     const SurfaceMaterial& operator[](int i) const { return materials_[static_cast<size_t>(i)]; }

@@ -75,9 +75,12 @@ def pixel(point):
     return v.x * scene.render.resolution_x, (1 - v.y) * scene.render.resolution_y
 
 
-def swap_to_diffuse():
+def swap_to_diffuse(names=None):
+    """names: only these materials (all when None)."""
     for mat in bpy.data.materials:
         if not mat.use_nodes or "Principled BSDF" not in mat.node_tree.nodes:
+            continue
+        if names is not None and mat.name not in names:
             continue
         nodes, links = mat.node_tree.nodes, mat.node_tree.links
         colour = nodes["Principled BSDF"].inputs["Base Color"].default_value[:]
@@ -103,6 +106,7 @@ def render_cycles(out_dir, stem, samples, seeds):
     cy.glossy_bounces = cy.transmission_bounces = cy.transparent_max_bounces = 128
     cy.caustics_reflective = cy.caustics_refractive = True
     cy.sample_clamp_direct = cy.sample_clamp_indirect = 0.0
+    cy.blur_glossy = 0.0  # no "Filter Glossy" (it blurs glossy surfaces met after a diffuse bounce)
     cy.pixel_filter_type = "BOX"
     cy.filter_width = 1.0
     scene.view_settings.view_transform = "Standard"

@@ -19,7 +19,6 @@
 #include "core/import/gltf_files.h"
 #include "core/import/gltf_node_expansion.h"
 #include "core/import/imported_file.h"
-#include "core/material_stand_in.h"
 #include "core/import/light_mapping.h"
 
 namespace sl {
@@ -392,8 +391,7 @@ private:
             fail("material '" + name + "': the emission (emissiveFactor x emissiveStrength) is larger than 1e30, "
                  "the largest radiance accepted");
         m.double_sided = gm.doubleSided;
-        // glTF's metallic-roughness material as it is meant (core/bsdf/bsdf.h evaluates it; the
-        // estimator draws it by the stand-in of core/material_stand_in.h, which notes its losses).
+        // glTF's metallic-roughness material as it is meant (core/bsdf/bsdf.h evaluates it).
         m.type = MaterialType::MetallicRoughness;
         m.albedo = base;
         m.metallic = static_cast<float>(std::clamp(metallic, 0.0, 1.0));
@@ -406,21 +404,11 @@ private:
         // KHR_materials_specular: specularFactor and specularColorFactor scale the dielectric F0.
         m.specular = static_cast<float>(std::clamp(ext_number(gm.extensions, "KHR_materials_specular", "specularFactor", 1), 0.0, 1.0));
         m.specular_color = ext_color(gm.extensions, "KHR_materials_specular", "specularColorFactor", Vec3(1));
-        // The notes see whether there is a base colour texture; it is read only where it is drawn
-        // (a diffuse stand-in), as every texture is decoded only when a drawn material uses it.
-        m.albedo_texture = pbr.baseColorTexture.index >= 0 ? 0 : -1;
-        const std::string lost = approximation_note(m);
-        if (!lost.empty()) notes.push_back(lost);
-        const bool drawn_diffuse = stand_in(m).type == MaterialType::Diffuse;
-        m.albedo_texture = drawn_diffuse ? texture(pbr.baseColorTexture.index, true, name, "base colour") : -1;
-        if (drawn_diffuse && pbr.baseColorTexture.index >= 0 && pbr.baseColorTexture.texCoord != 0)
+        m.albedo_texture = texture(pbr.baseColorTexture.index, true, name, "base colour");
+        if (pbr.baseColorTexture.index >= 0 && pbr.baseColorTexture.texCoord != 0)
             notes.push_back("only TEXCOORD_0 is used");
         if (pbr.metallicRoughnessTexture.index >= 0)
             notes.push_back("the metallic-roughness texture is not drawn yet (its factors are)");
-        if (!drawn_diffuse && m.emits()) {
-            notes.push_back("a mirror or glass surface does not emit here");
-            m.emission = Vec3(0);
-        }
         if (m.emits()) m.emission_texture = texture(gm.emissiveTexture.index, true, name, "emissive");
         if (gm.alphaMode == "BLEND" || gm.alphaMode == "MASK")
             notes.push_back("alpha " + gm.alphaMode + " is ignored (the surface is opaque)");

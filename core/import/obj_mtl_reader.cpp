@@ -15,7 +15,6 @@
 #include "config/input_file.h"
 #include "foundation/errors.h"
 #include "core/import/imported_file.h"
-#include "core/material_stand_in.h"
 
 namespace sl {
 namespace fs = std::filesystem;
@@ -250,17 +249,19 @@ void read_mtl(const std::string& path, ImportedFile& out, MtlResult& mtl) {
             m.specular_color = vmin(x.ks, Vec3(1)) / ks;
             m.ior = 1.5f;
         }
-        const bool drawn_diffuse = stand_in(m).type == MaterialType::Diffuse;
-        if (!drawn_diffuse && (m.albedo_texture >= 0 || m.emits()))
-            warn_once("specular", "a mirror or glass material keeps no texture or emission");
-        if (!drawn_diffuse) {
-            m.albedo_texture = -1;
+        // Smooth mirrors and glass, and GGX metals and rough glass, have no base colour to texture;
+        // the smooth ones emit nothing (the GGX ones do, as the surfaces they are).
+        const bool smooth = m.type == MaterialType::Mirror || m.type == MaterialType::Dielectric;
+        const bool textured = m.type == MaterialType::Diffuse || m.type == MaterialType::MetallicRoughness;
+        if ((!textured && m.albedo_texture >= 0) || (smooth && m.emits()))
+            warn_once("specular", "a mirror, metal or glass material keeps no texture, and a smooth one no emission");
+        if (!textured) m.albedo_texture = -1;
+        if (smooth) {
             m.emission = Vec3(0);
             m.emission_texture = -1;
         }
         if (m.type == MaterialType::Diffuse && max_component(x.ks) > 0.05f)
             warn_once("ks", "the specular colour Ks is ignored (the surface is diffuse)");
-        if (const std::string lost = approximation_note(m); !lost.empty()) warn_once(lost, lost);
         if (x.d < 1) warn_once("alpha", "transparency d/Tr is ignored (the surface is opaque)");
         if (max_component(m.albedo) > 1 || m.albedo.x < 0 || m.albedo.y < 0 || m.albedo.z < 0) {
             warn_once("kd", "Kd outside [0, 1] is clamped");

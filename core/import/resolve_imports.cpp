@@ -10,7 +10,6 @@
 #include "foundation/errors.h"
 #include "foundation/message_lines.h"
 #include "core/import/imported_file.h"
-#include "core/material_stand_in.h"
 #include "core/placement.h"
 #include "core/texture.h"
 #include "core/texture_load.h"
@@ -114,16 +113,6 @@ void check_budget(const std::vector<std::pair<ShapeDesc*, ImportedFile>>& files,
 void resolve_imports(SceneDesc& scene, const ImportBudget& budget) {
     if (scene.imports_resolved) return;
     std::set<std::string> warned;
-    // The scene file's own GGX materials that a shape uses, drawn by a stand-in: one line each
-    // for what that loses (core/material_stand_in.h).
-    for (size_t i = 0; i < scene.materials.size(); ++i) {
-        bool used = false;
-        for (const ShapeDesc& s : scene.shapes) used |= s.material == static_cast<int>(i);
-        const std::string lost = used ? approximation_note(scene.materials[i]) : std::string();
-        if (!lost.empty())
-            std::fprintf(stderr, "warning: %s: material '%s': %s\n", scene.source.c_str(),
-                         scene.materials[i].name.c_str(), lost.c_str());
-    }
     // Every file parsed first, and the headers of the textures its materials use: what the
     // imports will hold is known before a texel is decoded.
     std::vector<std::pair<ShapeDesc*, ImportedFile>> files;

@@ -12,6 +12,7 @@
 #include <x86intrin.h>
 #endif
 
+#include "core/glossy_path.h"
 #include "core/rng.h"
 #include "core/specular_path.h"
 #include "core/surface_material.h"
@@ -75,6 +76,9 @@ struct PixelTracer {
         float inside_ior = 1;
         int specular = 0;
         float tnear = 0;
+        // The last vertex was a followed glossy one whose direct light already counted the
+        // emitters on the side this leg leaves by: an emitter it meets adds nothing more.
+        bool direct_done = false;
         has_visible_point = false;
         medium_cycles = 0;
         const bool tof = settings.camera_tof;
@@ -88,14 +92,14 @@ struct PixelTracer {
             leg_ns += hit.t * (inside ? inside_ior : 1.0f) / kSpeedOfLight;
             if (hit.light >= 0) {  // an emitter seen directly (or through specular surfaces)
                 const size_t l = static_cast<size_t>(hit.light);
-                if (ctx.lights.quad_front_seen(l, d))
+                if (!direct_done && ctx.lights.quad_front_seen(l, d))
                     deposit(buffer, deposits, ctx.timeline, local, tof ? leg_ns : 0.0, beta * ctx.lights.quad_radiance(l));
                 return;
             }
             const SurfaceMaterial& m = ctx.materials[hit.material];
             const bool toward = dot(d, hit.normal) < 0;
             Vec3 nf = toward ? hit.normal : -hit.normal;
-            if (m.emits()) {  // an emissive mesh seen directly (or through specular surfaces)
+            if (m.emits() && !direct_done) {  // an emissive mesh seen directly (or through specular surfaces)
                 Vec3 le = emission_at(m, hit, d);
                 if (!is_black(le)) deposit(buffer, deposits, ctx.timeline, local, tof ? leg_ns : 0.0, beta * le);
             }
@@ -104,8 +108,31 @@ struct PixelTracer {
                 store_visible_point(pixel, hit.position, hit.t, nf, ns, beta * albedo_at(m, hit), leg_ns, specular, rng);
                 return;
             }
-            if (++specular >= settings.max_depth) return;
-            const Vec3 w = follow_specular(m, hit, o, d, inside, inside_ior, rng);
+            direct_done = false;
+            if (m.glossy == GlossyUse::Gather) {
+                Vec3 ns = toward ? hit.shading_normal : -hit.shading_normal;
+                store_glossy_point(hit, bsdf_at(m, hit), nf, ns, d, beta, leg_ns, specular, rng);
+                return;
+            }
+            Vec3 w;
+            if (m.glossy == GlossyUse::Follow) {
+                // Direct light here (f(wo, wi) |cos|), on the outside of a surface with an
+                // inside; then on along a sampled direction, counted as a bounce.
+                const bsdf::Bsdf b = bsdf_at(m, hit);
+                const Vec3 n_out = frame_normal(b, hit, d, inside);
+                const Vec3 nf_out = has_inside(b) && inside ? -nf : nf;
+                const LocalFrame frame(n_out);
+                const Vec3 wo = frame.local(-d);
+                direct_light(hit.position, hit.t, nf_out, n_out, tof ? leg_ns : 0.0, rng, [&](Vec3 wi) {
+                    return beta * bsdf::eval(b, wo, frame.local(wi));
+                });
+                if (++specular >= settings.max_depth) return;
+                w = follow_glossy(m, hit, o, d, inside, inside_ior, rng, bsdf::Transport::Radiance);
+                direct_done = dot(d, nf_out) > 0;
+            } else {
+                if (++specular >= settings.max_depth) return;
+                w = follow_specular(m, hit, o, d, inside, inside_ior, rng);
+            }
             beta *= w;
             tnear = 0;
             if (is_black(beta)) return;
@@ -200,7 +227,13 @@ struct PixelTracer {
             float* amb = &buffer.ambient[local * 3];
             amb[0] += a.x; amb[1] += a.y; amb[2] += a.z;
         }
-        // Direct light: one shadow ray per light, arriving after the light-to-point length.
+        direct_light(p, hit_t, nf, ns, back_ns, rng, [&](Vec3) { return f; });
+    }
+
+    // Direct light at p: one shadow ray per light, arriving after the light-to-point length;
+    // weight(to_light) turns the irradiance (cosine on ns included) into the pixel's radiance.
+    template <class Weight>
+    void direct_light(Vec3 p, float hit_t, Vec3 nf, Vec3 ns, double back_ns, Rng& rng, Weight&& weight) {
         Vec3 origin = p + nf * ray_epsilon(p, hit_t);  // the hit's error grows with the ray's length
         const bool carried = buffer.layout.carried;
         for (size_t i = 0; i < ctx.lights.count(); ++i) {
@@ -220,8 +253,30 @@ struct PixelTracer {
             if (ctx.geometry.occluded(origin, s.to_light, 0, s.distance * (1 - 1e-4f))) continue;
             Vec3 e = s.irradiance;
             if (medium) e *= medium->transmittance(origin, s.to_light, s.distance);
-            deposit(buffer, deposits, ctx.timeline, local, t, f * e);
+            deposit(buffer, deposits, ctx.timeline, local, t, weight(s.to_light) * e);
         }
+    }
+
+    // A visible point on a GGX surface that gathers (docs/materials.md): the throughput and the
+    // BSDF at the point, evaluated for each light sample and, in the gather, for each photon.
+    void store_glossy_point(const SurfaceHit& hit, const bsdf::Bsdf& b, Vec3 nf, Vec3 ns, Vec3 d, Vec3 beta,
+                            double leg_ns, int specular, Rng& rng) {
+        const RenderDesc& settings = ctx.render;
+        const double back_ns = settings.camera_tof ? leg_ns : 0.0;
+        vp = VisiblePoint{hit.position, ns, beta, back_ns, static_cast<uint32_t>(settings.max_depth - specular)};
+        vp.glossy = true;
+        vp.bsdf = b;
+        vp.wo = -d;
+        has_visible_point = true;
+        if (!buffer.ambient.empty()) {
+            Vec3 a = beta * b.base * settings.ambient;
+            float* amb = &buffer.ambient[local * 3];
+            amb[0] += a.x; amb[1] += a.y; amb[2] += a.z;
+        }
+        const LocalFrame frame(ns);
+        const Vec3 wo = frame.local(-d);
+        direct_light(hit.position, hit.t, nf, ns, back_ns, rng,
+                     [&](Vec3 wi) { return beta * bsdf::eval(b, wo, frame.local(wi)); });
     }
 };
 

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstring>
 
+#include "core/glossy_path.h"
 #include "core/rng.h"
 #include "core/specular_path.h"
 #include "core/surface_material.h"
@@ -33,6 +34,11 @@ struct PhotonPath {
     const bool drop_early = layout.carried && !ctx.render.camera_tof;
     bool early(double t) const { return drop_early && ctx.timeline.bucket(t) < layout.first_bucket; }
     const bool single_by_photons = ctx.single_scatter_by_photons;
+
+    void store(Vec3 p, Vec3 flux, Vec3 ns, Vec3 d, int depth, double t) {
+        out.push_back({p.x, p.y, p.z, flux.x, flux.y, flux.z, encode_normal(ns), encode_normal(-d),
+                       static_cast<uint32_t>(depth), 0, t});
+    }
 
     void trace(Rng& rng) {
         const RenderDesc& settings = ctx.render;
@@ -85,8 +91,7 @@ struct PhotonPath {
             if (m.type == MaterialType::Diffuse) {
                 Vec3 ns = toward ? hit.shading_normal : -hit.shading_normal;
                 if ((depth >= 2 || e.direct_by_photons) && !early(t))
-                    out.push_back({hit.position.x, hit.position.y, hit.position.z, flux.x, flux.y, flux.z,
-                                   encode_normal(ns), static_cast<uint32_t>(depth), t});
+                    store(hit.position, flux, ns, d, depth, t);
                 const Vec3 albedo = albedo_at(m, hit);
                 // Russian roulette from the third vertex on: survive with the albedo's maximum.
                 float q = depth >= 3 ? std::min(1.0f, max_component(albedo)) : 1.0f;
@@ -96,6 +101,18 @@ struct PhotonPath {
                 d = sample_cosine_hemisphere(ns, rng.uniform(), rng.uniform());
                 if (dot(d, nf) <= 0) return;
                 o = hit.position + nf * ray_epsilon(hit.position, hit.t);
+            } else if (m.glossy != GlossyUse::None) {
+                // A GGX surface: a record where visible points may gather, then a sampled bounce
+                // (importance transport), with Russian roulette as at specular vertices.
+                if (m.glossy == GlossyUse::Gather && (depth >= 2 || e.direct_by_photons) && !early(t))
+                    store(hit.position, flux, toward ? hit.shading_normal : -hit.shading_normal, d, depth, t);
+                const Vec3 w = follow_glossy(m, hit, o, d, inside, inside_ior, rng, bsdf::Transport::Importance);
+                flux *= w;
+                const float q = depth >= 3 ? std::min(1.0f, max_component(w)) : 1.0f;
+                if (q < 1 && q > 0) {
+                    if (rng.uniform() >= q) return;
+                    flux = flux * (1.0f / q);
+                }
             } else {
                 const Vec3 w = follow_specular(m, hit, o, d, inside, inside_ior, rng);
                 flux *= w;

@@ -18,16 +18,19 @@
 
 namespace sl {
 
-// 40 bytes: a pass holds every record twice (as traced, and sorted into the grid), and that
-// memory does not shrink with the number of sections.
+// 48 bytes: a pass holds every record twice (as traced, and sorted into the grid), and that
+// memory does not shrink with the number of sections. The incoming direction is what a GGX
+// visible point weighs the photon by (f(wo, wi)); Lambertian points do not read it.
 struct PhotonRecord {
     float x, y, z;
     float r, g, b;      // flux of the emitted path (W), before dividing by the photon count
     OctNormal normal;   // surface normal facing the side the photon arrived from
+    OctNormal incoming;  // unit direction back towards where the photon came from
     uint32_t depth;     // scattering vertices from the light, this one included
+    uint32_t unused = 0;  // the double's alignment pads to 48 bytes: kept zero, so records compare bytewise
     double t_ns;        // arrival time at this point
 };
-static_assert(sizeof(PhotonRecord) == 40);
+static_assert(sizeof(PhotonRecord) == 48);
 
 struct PhotonTraceCounters {
     std::atomic<uint64_t> photons{0}, rays{0}, stored{0}, stored_volume{0};

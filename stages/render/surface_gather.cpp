@@ -2,14 +2,19 @@
 
 #include <algorithm>
 
+#include "core/glossy_path.h"
 #include "core/sampling.h"
 #include "stages/render/gather_blockers.h"
 
 namespace sl {
 
-uint32_t gather_surface_at(const RenderContext& ctx, const VisiblePoint& vp, const PhotonMap& photons,
-                           int64_t photons_emitted, size_t pixel, SectionBuffer& buffer,
-                           DepositQueue& deposits) {
+namespace {
+
+// The gather. adder(k) (k: the pass's normalisation, 1 / (area x photons emitted)) returns
+// add(slot, photon), which adds one photon's share to a slot of the pixel.
+template <class Adder>
+uint32_t gather_with(const RenderContext& ctx, const VisiblePoint& vp, const PhotonMap& photons,
+                     int64_t photons_emitted, size_t pixel, SectionBuffer& buffer, Adder&& adder) {
     const BucketFinder bucket(ctx.timeline);  // every photon found asks it
     const SectionLayout& layout = buffer.layout;
     // Normals closer than ~45 degrees count as the same surface: keeps corners from leaking.
@@ -22,7 +27,7 @@ uint32_t gather_surface_at(const RenderContext& ctx, const VisiblePoint& vp, con
     const GatherBlockers blockers(ctx.geometry, p, n, static_cast<float>(r2));
     // This pass's estimate: f * flux / (area * photons emitted this pass), area pi R^2 but for blockers.
     const float k = static_cast<float>(inv_count / blockers.area());
-    const float wr = vp.weight.x * k, wg = vp.weight.y * k, wb = vp.weight.z * k;
+    auto add = adder(k);
     // Sides: a photon counts only on the side of its own surface the point is on, and only if it
     // is not below the point's surface (stacked sheets, a thin table over a floor). The slack
     // (a tenth of the radius) lets curved surfaces of curvature radius above ~5 R through.
@@ -43,7 +48,7 @@ uint32_t gather_surface_at(const RenderContext& ctx, const VisiblePoint& vp, con
         ++found;
         const int s = layout.slot_of_bucket(bucket(ph.t_ns + vp.camera_ns));
         if (s < 0) return;
-        deposits.add(buffer.slot(pixel, s), wr * ph.r, wg * ph.g, wb * ph.b);
+        add(s, ph);
     });
     if (found > 0) {
         const float alpha = ctx.render.alpha;
@@ -53,6 +58,31 @@ uint32_t gather_surface_at(const RenderContext& ctx, const VisiblePoint& vp, con
         buffer.photon_count[pixel] = count_new;
     }
     return found;
+}
+
+}  // namespace
+
+uint32_t gather_surface_at(const RenderContext& ctx, const VisiblePoint& vp, const PhotonMap& photons,
+                           int64_t photons_emitted, size_t pixel, SectionBuffer& buffer,
+                           DepositQueue& deposits) {
+    if (!vp.glossy) {  // Lambertian: the BRDF is in the weight already
+        return gather_with(ctx, vp, photons, photons_emitted, pixel, buffer, [&](float k) {
+            const float wr = vp.weight.x * k, wg = vp.weight.y * k, wb = vp.weight.z * k;
+            return [&, wr, wg, wb](int s, const PhotonRecord& ph) {
+                deposits.add(buffer.slot(pixel, s), wr * ph.r, wg * ph.g, wb * ph.b);
+            };
+        });
+    }
+    // GGX: f(wo, wi) for each photon's incoming direction, in the point's shading frame.
+    const LocalFrame frame(vp.normal);
+    const Vec3 wo = frame.local(vp.wo);
+    return gather_with(ctx, vp, photons, photons_emitted, pixel, buffer, [&](float k) {
+        const Vec3 w = vp.weight * k;
+        return [&, w](int s, const PhotonRecord& ph) {
+            const Vec3 f = bsdf::eval(vp.bsdf, wo, frame.local(decode_normal(ph.incoming))) * w;
+            deposits.add(buffer.slot(pixel, s), f.x * ph.r, f.y * ph.g, f.z * ph.b);
+        };
+    });
 }
 
 }  // namespace sl

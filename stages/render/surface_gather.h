@@ -5,6 +5,7 @@
 // pixel is gathered by the thread that traced it, in a fixed order: no atomics, repeatable sums.
 #include <cstdint>
 
+#include "core/bsdf/bsdf.h"
 #include "foundation/vec3.h"
 #include "stages/render/deposit_queue.h"
 #include "stages/render/photon_map.h"
@@ -13,13 +14,18 @@
 
 namespace sl {
 
-// Where a camera path first meets a diffuse surface.
+// Where a camera path ends on a diffuse surface, or on a GGX surface that gathers
+// (core/material_table.h, GlossyUse::Gather). Visible points live only while their pixel is
+// gathered (one per thread), so the GGX ones keep the BSDF and wo whole rather than packed.
 struct VisiblePoint {
     Vec3 position;
-    Vec3 normal;         // unit, facing the camera path
-    Vec3 weight;         // camera throughput x BRDF (albedo / pi)
+    Vec3 normal;         // unit shading normal, facing the camera path
+    Vec3 weight;         // Lambertian: camera throughput x BRDF (albedo / pi); GGX: the throughput
     double camera_ns;    // time back to the camera (with camera_tof; else 0)
     uint32_t depth_left;  // photon vertices this point may still accept
+    bool glossy = false;  // a GGX point: each photon weighs f(wo, its incoming direction)
+    bsdf::Bsdf bsdf;      // GGX: the BSDF at the point (textures applied)
+    Vec3 wo;              // GGX: unit, towards the camera
 };
 
 // Adds `photons`' estimate at `vp` to pixel `pixel` of `buffer` (flux / (pi R^2 emitted)), through

@@ -1,10 +1,9 @@
-// A parsed material's BSDF (core/bsdf/material_bsdf.h) and its stand-in among the three
-// surfaces the estimator draws today (core/material_stand_in.h): the rules the docs' table
-// states, and which of them warn.
+// A parsed material's BSDF (core/bsdf/material_bsdf.h) and how camera paths use it
+// (core/material_table.h): the rules the docs' table states.
 #include <gtest/gtest.h>
 
 #include "core/bsdf/material_bsdf.h"
-#include "core/material_stand_in.h"
+#include "core/material_table.h"
 
 namespace sl::test {
 namespace {
@@ -25,7 +24,7 @@ TEST(MaterialBsdf, ParametersReachTheBsdf) {
     EXPECT_EQ(b.kind, bsdf::Kind::Conductor);
     EXPECT_FLOAT_EQ(b.alpha, 0.09f);  // roughness^2
     // At normal incidence on a smooth-ish lobe the reflected colour is the conductor's F0.
-    const Vec3 f0 = conductor_f0(c);
+    const Vec3 f0 = bsdf::fresnel_conductor(1, c.eta, c.k);
     EXPECT_NEAR(f0.x, bsdf::fresnel_complex(1, 0.2f, 3.9f), 1e-6f);
     MaterialDesc p = material(MaterialType::MetallicRoughness, 0.5f);
     p.metallic = 0.3f;
@@ -40,40 +39,25 @@ TEST(MaterialBsdf, ParametersReachTheBsdf) {
     EXPECT_EQ(bsdf_of(material(MaterialType::Diffuse, 0))->kind, bsdf::Kind::Lambert);
 }
 
-TEST(MaterialStandIn, RulesAndWarnings) {
-    // Conductors: a mirror up to roughness 0.1, else diffuse (warned).
-    EXPECT_EQ(stand_in(material(MaterialType::Conductor, 0.05f)).type, MaterialType::Mirror);
-    EXPECT_TRUE(approximation_note(material(MaterialType::Conductor, 0.05f)).empty());
-    EXPECT_EQ(stand_in(material(MaterialType::Conductor, 0.3f)).type, MaterialType::Diffuse);
-    EXPECT_NE(approximation_note(material(MaterialType::Conductor, 0.3f)).find("rough metal"), std::string::npos);
-    // Rough glass: smooth glass, warned when rough.
-    EXPECT_EQ(stand_in(material(MaterialType::RoughDielectric, 0.5f)).type, MaterialType::Dielectric);
-    EXPECT_NE(approximation_note(material(MaterialType::RoughDielectric, 0.5f)).find("drawn smooth"), std::string::npos);
-    // Metallic-roughness: Blender's default material and an Emission-only one are not warned.
-    MaterialDesc plastic = material(MaterialType::MetallicRoughness, 0.5f);
-    EXPECT_EQ(stand_in(plastic).type, MaterialType::Diffuse);
-    EXPECT_TRUE(approximation_note(plastic).empty());
-    MaterialDesc emission_only = material(MaterialType::MetallicRoughness, 1.0f);
-    emission_only.albedo = Vec3(0);
-    emission_only.metallic = 1;
-    EXPECT_TRUE(approximation_note(emission_only).empty());
-    MaterialDesc metal = emission_only;
-    metal.albedo = Vec3(0.9f);
-    EXPECT_NE(approximation_note(metal).find("rough metal"), std::string::npos);
-    metal.roughness = 0.05f;
-    EXPECT_EQ(stand_in(metal).type, MaterialType::Mirror);
-    EXPECT_FLOAT_EQ(stand_in(metal).reflectance.x, 0.9f);
+// How camera paths use each GGX material (core/material_table.h; the table in
+// docs/scene-format.md): followed when glossy or when it has an inside, else a visible point.
+TEST(MaterialGlossyUse, RulesOfTheDocsTable) {
+    EXPECT_EQ(glossy_use(material(MaterialType::Conductor, 0.05f)), GlossyUse::Follow);
+    EXPECT_EQ(glossy_use(material(MaterialType::Conductor, 0.49f)), GlossyUse::Follow);
+    EXPECT_EQ(glossy_use(material(MaterialType::Conductor, 0.5f)), GlossyUse::Gather);
+    EXPECT_EQ(glossy_use(material(MaterialType::RoughDielectric, 1.0f)), GlossyUse::Follow);
+    MaterialDesc plastic = material(MaterialType::MetallicRoughness, 0.2f);  // a diffuse base: always gathers
+    EXPECT_EQ(glossy_use(plastic), GlossyUse::Gather);
+    MaterialDesc metal = plastic;
+    metal.metallic = 1;
+    EXPECT_EQ(glossy_use(metal), GlossyUse::Follow);
+    metal.roughness = 0.7f;
+    EXPECT_EQ(glossy_use(metal), GlossyUse::Gather);
     MaterialDesc glass = plastic;
-    glass.transmission = 1;
-    glass.albedo = Vec3(1);
-    glass.roughness = 0;
-    EXPECT_EQ(stand_in(glass).type, MaterialType::Dielectric);
-    EXPECT_TRUE(approximation_note(glass).empty());
-    // The three surfaces the estimator draws exactly stand for themselves.
-    for (MaterialType t : {MaterialType::Diffuse, MaterialType::Mirror, MaterialType::Dielectric}) {
-        EXPECT_EQ(stand_in(material(t, 0.5f)).type, t);
-        EXPECT_TRUE(approximation_note(material(t, 0.5f)).empty());
-    }
+    glass.transmission = 0.3f;
+    EXPECT_EQ(glossy_use(glass), GlossyUse::Follow);
+    for (MaterialType t : {MaterialType::Diffuse, MaterialType::Mirror, MaterialType::Dielectric})
+        EXPECT_EQ(glossy_use(material(t, 0.5f)), GlossyUse::None);
 }
 
 }  // namespace

@@ -125,14 +125,18 @@ inline void write_gltf(const std::string& path, const ModelMesh& m, const std::v
             if (m.tri_material[t] == static_cast<int>(mi))
                 idx.insert(idx.end(), {m.indices[3 * t], m.indices[3 * t + 1], m.indices[3 * t + 2]});
         const ModelMaterial& mat = mats[mi];
+        // Matte, as glTF can say it: no specular layer (KHR_materials_specular's factor 0) leaves
+        // the metallic-roughness material's Lambertian base alone, which the tests compare with
+        // a scene file's diffuse material.
         json jm = {{"name", mat.name},
                    {"pbrMetallicRoughness", {{"baseColorFactor", {mat.albedo.x, mat.albedo.y, mat.albedo.z, 1.0}},
                                              {"metallicFactor", 0.0}, {"roughnessFactor", 1.0}}},
-                   {"doubleSided", mat.double_sided}};
+                   {"doubleSided", mat.double_sided},
+                   {"extensions", {{"KHR_materials_specular", {{"specularFactor", 0.0}}}}}};
         if (!is_black(mat.emission)) {
             float s = max_component(mat.emission);
             jm["emissiveFactor"] = {mat.emission.x / s, mat.emission.y / s, mat.emission.z / s};
-            jm["extensions"] = {{"KHR_materials_emissive_strength", {{"emissiveStrength", s}}}};
+            jm["extensions"]["KHR_materials_emissive_strength"] = {{"emissiveStrength", s}};
         }
         if (!mat.albedo_image.empty()) {
             if (binary) {  // a .glb carries its images in its buffer
@@ -158,7 +162,7 @@ inline void write_gltf(const std::string& path, const ModelMesh& m, const std::v
     if (!images.empty()) { j["images"] = images; j["textures"] = textures; }
     j["bufferViews"] = views;
     j["accessors"] = accessors;
-    j["extensionsUsed"] = {"KHR_materials_emissive_strength"};
+    j["extensionsUsed"] = {"KHR_materials_emissive_strength", "KHR_materials_specular"};
     if (!extra_lights.is_null()) {
         j["extensionsUsed"].push_back("KHR_lights_punctual");
         j["extensions"] = {{"KHR_lights_punctual", {{"lights", extra_lights["lights"]}}}};

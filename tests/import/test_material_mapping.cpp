@@ -1,12 +1,12 @@
-// glTF metallic-roughness and MTL materials as slowlight's three surfaces, and the texture
-// wrap modes.
+// glTF metallic-roughness and MTL materials as slowlight's materials (and how camera paths use
+// their BSDFs, core/material_table.h), and the texture wrap modes.
 #include <gtest/gtest.h>
 
 #include <fstream>
 
 #include "foundation/errors.h"
 #include "core/import/imported_file.h"
-#include "core/material_stand_in.h"
+#include "core/material_table.h"
 #include "core/texture.h"
 #include "tests/common/temp_dir.h"
 #include "tests/import/model_writers.h"
@@ -36,25 +36,24 @@ TEST(MaterialMapping, GltfMetallicRoughnessTransmissionEmission) {
     ImportedFile f = read_gltf(dir.file("m.gltf"), true);
     ASSERT_EQ(f.materials.size(), 5u);
     for (const MaterialDesc& m : f.materials) EXPECT_EQ(m.type, MaterialType::MetallicRoughness);
-    // Drawn (core/material_stand_in.h) as before the GGX materials existed:
-    EXPECT_EQ(stand_in(f.materials[0]).type, MaterialType::Diffuse);
+    // Evaluated as GGX: the matte base gathers, the smooth metal is followed, the rough metal
+    // (roughness 0.5) gathers, the glass is followed.
+    EXPECT_EQ(glossy_use(f.materials[0]), GlossyUse::Gather);
     EXPECT_FLOAT_EQ(f.materials[0].albedo.y, 0.4f);
-    EXPECT_EQ(stand_in(f.materials[1]).type, MaterialType::Mirror);
-    EXPECT_FLOAT_EQ(stand_in(f.materials[1]).reflectance.x, 0.9f);
+    EXPECT_EQ(glossy_use(f.materials[1]), GlossyUse::Follow);
+    EXPECT_FLOAT_EQ(f.materials[1].albedo.x, 0.9f);
     EXPECT_FLOAT_EQ(f.materials[1].metallic, 1.0f);
     EXPECT_FLOAT_EQ(f.materials[1].roughness, 0.0f);
-    EXPECT_EQ(stand_in(f.materials[2]).type, MaterialType::Diffuse);  // rough metal: approximated, and said so
+    EXPECT_EQ(glossy_use(f.materials[2]), GlossyUse::Gather);
     EXPECT_FLOAT_EQ(f.materials[2].roughness, 0.5f);
-    EXPECT_EQ(stand_in(f.materials[3]).type, MaterialType::Dielectric);
+    EXPECT_EQ(glossy_use(f.materials[3]), GlossyUse::Follow);
     EXPECT_FLOAT_EQ(f.materials[3].ior, 1.33f);
     EXPECT_FLOAT_EQ(f.materials[3].transmission, 1.0f);
     EXPECT_TRUE(f.materials[4].emits());
     EXPECT_TRUE(f.materials[4].double_sided);
     EXPECT_FLOAT_EQ(f.materials[4].emission.z, 8.0f);  // factor (0.25, 0.5, 1) x strength 8
     EXPECT_FLOAT_EQ(f.materials[4].emission.x, 2.0f);
-    bool rough_warned = false;
-    for (const std::string& w : f.warnings) rough_warned |= w.find("material 'brushed': rough metal") != std::string::npos;
-    EXPECT_TRUE(rough_warned);
+    for (const std::string& w : f.warnings) EXPECT_EQ(w.find("material 'brushed'"), std::string::npos) << w;
     EXPECT_EQ(f.mesh.triangle_count(), 10u);
     EXPECT_EQ(f.mesh.normals.size(), f.mesh.positions.size());
     EXPECT_EQ(f.mesh.uvs.size(), 2 * f.mesh.positions.size());
@@ -153,13 +152,12 @@ TEST(MaterialMapping, BlenderDefaultPrincipledAndEmissionOnlyGiveNoWarning) {
     EXPECT_FLOAT_EQ(f.materials[0].ior, 1.45f);
     EXPECT_FLOAT_EQ(f.materials[0].specular_color.x, 1.186f);
     EXPECT_FLOAT_EQ(f.materials[0].roughness, 0.5f);
-    EXPECT_EQ(stand_in(f.materials[0]).type, MaterialType::Diffuse);
+    EXPECT_EQ(glossy_use(f.materials[0]), GlossyUse::Gather);
     EXPECT_TRUE(f.materials[1].emits());
     EXPECT_FLOAT_EQ(f.materials[1].metallic, 1.0f);
     EXPECT_FLOAT_EQ(f.materials[2].specular, 0.5f);
-    // Only the rough metal, which is drawn diffuse, is warned about; nothing about the extensions.
-    ASSERT_EQ(f.warnings.size(), 1u) << f.warnings[0];
-    EXPECT_NE(f.warnings[0].find("material 'Metal': rough metal (roughness 0.30)"), std::string::npos) << f.warnings[0];
+    // Nothing is approximated: no warning, none about the extensions.
+    EXPECT_TRUE(f.warnings.empty()) << f.warnings[0];
 }
 
 // MTL's Ns as Blender pairs it with roughness (Ns = 1000 (1 - r)^2), and Ks as a specular layer.
@@ -185,20 +183,16 @@ TEST(MaterialMapping, MtlNsAndKsAsGgxMaterials) {
     EXPECT_FLOAT_EQ(f.materials[2].ior, 1.45f);
     EXPECT_EQ(f.materials[3].type, MaterialType::Conductor);
     EXPECT_FLOAT_EQ(f.materials[3].roughness, 0.0f);
-    EXPECT_EQ(stand_in(f.materials[3]).type, MaterialType::Mirror);
-    // The plastic is drawn diffuse without a warning (as Blender's default material); the rough
-    // metal and the frosted glass are approximations, and say so.
+    EXPECT_EQ(glossy_use(f.materials[3]), GlossyUse::Follow);
+    // Their BSDFs are evaluated: no material is warned about.
     std::string all;
     for (const std::string& w : f.warnings) all += w + "\n";
-    EXPECT_EQ(all.find("'plastic'"), std::string::npos) << all;
-    EXPECT_NE(all.find("material 'metal': rough metal (roughness 0.30)"), std::string::npos) << all;
-    EXPECT_NE(all.find("material 'frosted': rough glass (roughness 1.00) is drawn smooth"), std::string::npos) << all;
-    EXPECT_EQ(all.find("'polished'"), std::string::npos) << all;
+    for (const char* name : {"'plastic'", "'metal'", "'frosted'", "'polished'"})
+        EXPECT_EQ(all.find(name), std::string::npos) << all;
 }
 
-// A scene file's own GGX materials render through their stand-ins; the program warns once
-// for each that a shape uses and that loses something (the rough metal), and for no other.
-TEST(MaterialMapping, SceneFileGgxMaterialsWarnOnlyWhereApproximated) {
+// A scene file's own GGX materials render with their BSDFs, and nothing is warned about.
+TEST(MaterialMapping, SceneFileGgxMaterialsRenderWithoutWarnings) {
     TempDir dir;
     std::ofstream(dir.file("s.json")) << R"({"camera": {"position": [0, 1, 3], "look_at": [0, 1, 0], "width": 8, "height": 8},
       "materials": {"brushed": {"type": "conductor", "reflectance": [0.9, 0.6, 0.5], "roughness": 0.3},
@@ -214,9 +208,7 @@ TEST(MaterialMapping, SceneFileGgxMaterialsWarnOnlyWhereApproximated) {
     EXPECT_EQ(r.exit_code, 0) << r.err;
     size_t warnings = 0;
     for (size_t at = r.err.find("warning:"); at != std::string::npos; at = r.err.find("warning:", at + 1)) ++warnings;
-    EXPECT_EQ(warnings, 1u) << r.err;
-    EXPECT_NE(r.err.find("warning: " + dir.file("s.json") + ": material 'brushed': rough metal (roughness 0.30)"),
-              std::string::npos) << r.err;
+    EXPECT_EQ(warnings, 0u) << r.err;
 }
 
 TEST(MaterialMapping, WrapModesAndBilinear) {

@@ -1,0 +1,65 @@
+#pragma once
+// One GGX surface on a camera or photon path (core/bsdf/bsdf.h): the BSDF at the hit (its base
+// colour times its texture), the local shading frame it is evaluated in, and a sampled bounce
+// with the same bookkeeping as a specular one (core/specular_path.h): new origin, direction,
+// and the inside flag and index when a rough refraction enters or leaves a solid, so that each
+// leg's time stays its length times the index over c.
+#include "core/bsdf/bsdf.h"
+#include "core/material_table.h"
+#include "core/rng.h"
+#include "core/scene_geometry.h"
+
+namespace sl {
+
+// An orthonormal frame with +z along n: world <-> the BSDF's local frame.
+struct LocalFrame {
+    Vec3 t, b, n;
+    explicit LocalFrame(Vec3 normal) : n(normal) { make_basis(n, t, b); }
+    Vec3 local(Vec3 v) const { return {dot(v, t), dot(v, b), dot(v, n)}; }
+    Vec3 world(Vec3 v) const { return t * v.x + b * v.y + n * v.z; }
+};
+
+inline bsdf::Bsdf bsdf_at(const SurfaceMaterial& m, const SurfaceHit& hit) {
+    bsdf::Bsdf b = m.bsdf;
+    if (m.albedo_texture) b.base = b.base * m.albedo_texture->sample(hit.tex_u, hit.tex_v);
+    return b;
+}
+
+// Whether the BSDF has an inside (rough glass, transmissive metallic-roughness): its frame's +z
+// is then the outside, known from the path's inside flag as for smooth glass.
+inline bool has_inside(const bsdf::Bsdf& b) { return !bsdf::two_sided(b); }
+
+// The frame's +z: the shading normal on the side the path arrives from (d: its direction), or
+// on the outside for a BSDF with an inside.
+inline Vec3 frame_normal(const bsdf::Bsdf& b, const SurfaceHit& hit, Vec3 d, bool inside) {
+    const Vec3 ns = dot(d, hit.normal) < 0 ? hit.shading_normal : -hit.shading_normal;
+    return has_inside(b) && inside ? -ns : ns;
+}
+
+// Samples the BSDF for a path arriving along d (radiance for camera paths, importance for
+// photons) and moves the path on. Returns the throughput weight f |cos| / pdf; zero when the
+// draw is lost (GGX's single-scattering loss) or would leave through the wrong side of the true
+// (geometric) surface, and the path ends.
+inline Vec3 follow_glossy(const SurfaceMaterial& m, const SurfaceHit& hit, Vec3& o, Vec3& d, bool& inside,
+                          float& inside_ior, Rng& rng, bsdf::Transport mode) {
+    const bsdf::Bsdf b = bsdf_at(m, hit);
+    const LocalFrame frame(frame_normal(b, hit, d, inside));
+    const Vec3 wo = frame.local(-d);
+    const float uc = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
+    const bsdf::Sample s = bsdf::sample(b, wo, uc, u1, u2, mode);
+    if (!s.valid) return Vec3(0);
+    const Vec3 wi = normalize(frame.world(s.wi));
+    const bool crossed = s.wi.z * wo.z < 0;
+    const Vec3 nf = dot(d, hit.normal) < 0 ? hit.normal : -hit.normal;  // faces the arriving path
+    if ((dot(wi, nf) > 0) == crossed) return Vec3(0);  // the shading normal sent it through the true surface
+    if (crossed) {
+        inside = !inside;
+        inside_ior = m.ior;
+    }
+    const Vec3 side = dot(wi, hit.normal) > 0 ? hit.normal : -hit.normal;
+    o = hit.position + side * ray_epsilon(hit.position, hit.t);
+    d = wi;
+    return s.weight;
+}
+
+}  // namespace sl
