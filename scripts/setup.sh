@@ -12,6 +12,7 @@ packages=(
   libavformat-dev libavcodec-dev libavfilter-dev libswscale-dev libavutil-dev ffmpeg fonts-dejavu-core
   libxxhash-dev xxhash nlohmann-json3-dev libtinygltf-dev libgtest-dev libbenchmark-dev
   gnuplot-nox libopenmpi-dev openmpi-bin
+  pybind11-dev python3-dev python3-numpy  # the Python module (docs/python.md)
 )
 missing=()
 for p in "${packages[@]}"; do

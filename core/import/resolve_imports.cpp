@@ -7,6 +7,7 @@
 
 #include "foundation/errors.h"
 #include "foundation/message_lines.h"
+#include "foundation/warning_lines.h"
 #include "core/import/imported_file.h"
 #include "core/material_stand_in.h"
 #include "core/placement.h"
@@ -56,8 +57,7 @@ void resolve_imports(SceneDesc& scene) {
         for (const ShapeDesc& s : scene.shapes) used |= s.material == static_cast<int>(i);
         const std::string lost = used ? approximation_note(scene.materials[i]) : std::string();
         if (!lost.empty())
-            std::fprintf(stderr, "warning: %s: material '%s': %s\n", scene.source.c_str(),
-                         scene.materials[i].name.c_str(), lost.c_str());
+            emit_warning("warning: " + scene.source + ": material '" + scene.materials[i].name + "': " + lost);
     }
     std::vector<std::string> seen_files;
     for (ShapeDesc& s : scene.shapes) {
@@ -65,7 +65,7 @@ void resolve_imports(SceneDesc& scene) {
         ImportedFile f = read_file(s, scene.source);
         const Placement place{s};
         for (const std::string& w : counted_lines(f.warnings))
-            if (warned.insert(w).second) std::fprintf(stderr, "%s\n", message_line("warning: ", w).c_str());
+            if (warned.insert(w).second) emit_warning(message_line("warning: ", w));
         // Materials: the entry's own for every triangle, or the file's (with their textures).
         std::vector<int> material_map(f.materials.size(), s.material);
         if (s.material < 0) {
@@ -81,10 +81,8 @@ void resolve_imports(SceneDesc& scene) {
                 auto img = it.bytes.empty() ? load_texture_file(d.file, d.srgb)
                                             : load_texture_memory(it.bytes, d.file, it.format, d.srgb);
                 if (img->replaced > 0)  // said once per texture, with how many
-                    std::fprintf(stderr, "%s\n",
-                                 message_line("warning: ", d.file + ": " + std::to_string(img->replaced) +
-                                                               " texel values are NaN, infinite or negative: drawn as 0")
-                                     .c_str());
+                    emit_warning(message_line("warning: ", d.file + ": " + std::to_string(img->replaced) +
+                                                               " texel values are NaN, infinite or negative: drawn as 0"));
                 img->wrap_s = d.wrap_s;
                 img->wrap_t = d.wrap_t;
                 d.image = std::move(img);
