@@ -1,6 +1,5 @@
 """What the Python module's tests share: the program, the samples, running the command line, and
-reading its EXR frames back through OpenImageIO's oiiotool (an independent reader: EXR -> PFM,
-32-bit floats both, so nothing is rounded on the way)."""
+reading its EXR frames back with a reader of the file format written here (not the program's)."""
 import os
 import subprocess
 import sys
@@ -40,21 +39,40 @@ def error_line(stderr):
     return lines[0][len("error: "):]
 
 
-def read_pfm(path):
-    with open(path, "rb") as f:
-        kind = f.readline().strip()
-        w, h = map(int, f.readline().split())
-        scale = float(f.readline())
-        data = np.fromfile(f, dtype="<f4" if scale < 0 else ">f4")
-    channels = 3 if kind == b"PF" else 1
-    return data.reshape(h, w, channels)[::-1].astype(np.float32)  # PFM rows run bottom to top
-
-
 def read_exr(path):
-    with tempfile.TemporaryDirectory() as d:
-        pfm = os.path.join(d, "x.pfm")
-        subprocess.run(["oiiotool", path, "-o", pfm], check=True, capture_output=True)
-        return read_pfm(pfm)
+    """An uncompressed scanline EXR of float R, G, B channels (what the program writes), read
+    here from the file format itself (openexr.com's layout), not by the program's reader."""
+    import struct
+    with open(path, "rb") as f:
+        data = f.read()
+    assert data[:4] == b"\x76\x2f\x31\x01", path
+    pos, attrs = 8, {}
+    while data[pos] != 0:  # attributes: name\0 type\0 size value
+        end = data.index(b"\0", pos)
+        name = data[pos:end].decode()
+        tend = data.index(b"\0", end + 1)
+        kind = data[end + 1:tend].decode()
+        size = struct.unpack_from("<i", data, tend + 1)[0]
+        attrs[name] = (kind, data[tend + 5:tend + 5 + size])
+        pos = tend + 5 + size
+    pos += 1
+    assert attrs["compression"][1] == b"\0", "compressed EXR: the test reads only uncompressed files"
+    xmin, ymin, xmax, ymax = struct.unpack("<4i", attrs["dataWindow"][1])
+    w, h = xmax - xmin + 1, ymax - ymin + 1
+    channels, raw = [], attrs["channels"][1]
+    while raw[0] != 0:  # name\0, pixel type int (2 = float), then 12 more bytes
+        end = raw.index(b"\0")
+        channels.append((raw[:end].decode(), struct.unpack_from("<i", raw, end + 1)[0]))
+        raw = raw[end + 17:]
+    assert [t for _, t in channels] == [2] * len(channels), channels
+    offsets = struct.unpack_from(f"<{h}Q", data, pos)  # one scanline per block when uncompressed
+    image = np.empty((h, w, len(channels)), dtype=np.float32)
+    for off in offsets:
+        y, size = struct.unpack_from("<ii", data, off)
+        row = np.frombuffer(data, dtype="<f4", count=size // 4, offset=off + 8).reshape(len(channels), w)
+        image[y - ymin] = row.T
+    names = [n for n, _ in channels]
+    return image[:, :, [names.index(c) for c in "RGB"]]
 
 
 def cli_exr_frames(scene, options, extra=()):

@@ -3,7 +3,6 @@
 equal to the whole array, in order and before the render ends."""
 import json
 import os
-import threading
 import unittest
 
 import numpy as np
@@ -85,27 +84,6 @@ class Streaming(unittest.TestCase):
         stream.close()
         self.assertTrue(stream.interrupted)
         self.assertLess(stream.stats["sections_done"], 3)
-
-
-class TheGilIsFree(unittest.TestCase):
-    def test_python_runs_while_rendering(self):
-        ticks, stop = [0], threading.Event()
-
-        def count():
-            while not stop.is_set():
-                ticks[0] += 1
-
-        t = threading.Thread(target=count)
-        t.start()
-        seen = []
-        slowlight.render(ms.BOX, progress=lambda *a: seen.append(ticks[0]), **dict(ms.SMALL, passes=6))
-        stop.set()
-        t.join()
-        # The counting thread advanced between every two passes, while the render held no GIL
-        # (a render holding it would leave the thread only the moments of the callback).
-        gaps = sorted(b - a for a, b in zip(seen, seen[1:]))
-        self.assertGreater(len(gaps), 3)
-        self.assertGreater(gaps[len(gaps) // 2], 100, seen)
 
 
 if __name__ == "__main__":
