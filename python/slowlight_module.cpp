@@ -5,6 +5,7 @@
 // bounded queue (frames(): at most `queue_frames` frames wait for Python, so a slow consumer
 // holds the pipeline's write stage instead of letting frames pile up).
 #include <malloc.h>
+#include <sys/mman.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -15,6 +16,7 @@
 #include <cstring>
 #include <deque>
 #include <exception>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <thread>
@@ -42,11 +44,63 @@ std::optional<SceneText> scene_text(const std::optional<std::string>& json, cons
     return t;
 }
 
-// A frame's pixels as an array that owns them (no copy).
-py::array_t<float> owned_image(std::vector<float>&& rgb, int height, int width) {
-    auto* owner = new std::vector<float>(std::move(rgb));
-    py::capsule free_it(owner, [](void* p) { delete static_cast<std::vector<float>*>(p); });
-    return py::array_t<float>({height, width, 3}, owner->data(), free_it);
+// The streamed frames' pixel buffers, used again once Python drops a frame: a fresh 25 MB
+// buffer per 1080p frame cost its pages' first-touch faults every frame (on this kind of
+// machine eight times the copy itself), where the program reuses its frame buffers.
+struct FramePool {
+    std::mutex m;
+    std::vector<std::vector<float>> free;
+    size_t keep = 4;
+    std::vector<float> take() {
+        std::lock_guard lock(m);
+        if (free.empty()) return {};
+        std::vector<float> v = std::move(free.back());
+        free.pop_back();
+        return v;
+    }
+    void give(std::vector<float>&& v) {
+        std::lock_guard lock(m);
+        if (free.size() < keep) free.push_back(std::move(v));
+    }
+};
+
+struct PooledPixels {
+    std::vector<float> rgb;
+    std::shared_ptr<FramePool> pool;  // null: not pooled
+};
+
+// A frame's pixels as an array that owns them (no copy); back to the pool when Python drops it.
+py::array_t<float> owned_image(std::vector<float>&& rgb, int height, int width,
+                               std::shared_ptr<FramePool> pool = nullptr) {
+    auto* owner = new PooledPixels{std::move(rgb), std::move(pool)};
+    py::capsule free_it(owner, [](void* p) {
+        auto* o = static_cast<PooledPixels*>(p);
+        if (o->pool) o->pool->give(std::move(o->rgb));
+        delete o;
+    });
+    return py::array_t<float>({height, width, 3}, owner->rgb.data(), free_it);
+}
+
+// float32 (frames, height, width, 3) in memory of its own, its pages mapped at once
+// (MAP_POPULATE): render()'s array was otherwise first touched page by page as the frames
+// arrived, and those faults cost more than the copies (docs/benchmarks.md: 1.2 GB filled in
+// 1.6-8.0 s with 4 KiB faults, 1.1 s mapping + 0.2 s filling when populated; huge pages, with
+// their compaction, were slower still).
+py::array_t<float> frames_array(int frames, int height, int width) {
+    struct Mapping {
+        void* p;
+        size_t bytes;
+    };
+    const size_t bytes = std::max<size_t>(1, static_cast<size_t>(frames) * height * width * 3 * sizeof(float));
+    void* p = mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS | MAP_POPULATE, -1, 0);
+    if (p == MAP_FAILED) throw std::bad_alloc();
+    auto* m = new Mapping{p, bytes};
+    py::capsule unmap(m, [](void* q) {
+        auto* mm = static_cast<Mapping*>(q);
+        munmap(mm->p, mm->bytes);
+        delete mm;
+    });
+    return py::array_t<float>({frames, height, width, 3}, static_cast<float*>(p), unmap);
 }
 
 class Render;
@@ -109,6 +163,7 @@ public:
             into_data_ = a.mutable_data();
         }
         queue_frames_ = std::max(1, queue_frames);
+        pool_->keep = static_cast<size_t>(queue_frames_) + 2;
         progress_ = progress;
         worker_ = std::thread([this] { work(); });
     }
@@ -133,7 +188,7 @@ public:
             queue_.pop_front();
             cv_.notify_all();  // room in the queue
             lock.unlock();
-            return py::make_tuple("frame", index, owned_image(std::move(rgb), height(), width()));
+            return py::make_tuple("frame", index, owned_image(std::move(rgb), height(), width(), pool_));
         }
         if (done_) {
             if (error_) std::rethrow_exception(error_);
@@ -172,7 +227,8 @@ public:
             frames_written_ = index + 1;
             return;
         }
-        std::vector<float> copy(rgb);
+        std::vector<float> copy = pool_->take();
+        copy.assign(rgb.begin(), rgb.end());  // into a buffer whose pages are mapped already
         std::unique_lock lock(m_);
         cv_.wait(lock, [&] { return queue_.size() < static_cast<size_t>(queue_frames_) || abandoned_; });
         if (abandoned_) return;
@@ -214,6 +270,7 @@ private:
     mutable std::mutex m_;
     std::condition_variable cv_;
     std::deque<std::pair<int, std::vector<float>>> queue_;
+    std::shared_ptr<FramePool> pool_ = std::make_shared<FramePool>();
     std::deque<std::pair<int, int>> progress_events_;
     std::vector<float> steady_;
     std::atomic<bool> cancel_{false};
@@ -263,6 +320,7 @@ PYBIND11_MODULE(_slowlight, m) {
     });
     m.attr("SPEED_OF_LIGHT_M_PER_NS") = sl::kSpeedOfLight;
     m.attr("VERSION") = SLOWLIGHT_VERSION;
+    m.def("frames_array", &sl::frames_array, py::arg("frames"), py::arg("height"), py::arg("width"));
     m.def("info_json", &sl::info_json, py::arg("args"), py::arg("json"), py::arg("base_dir"),
           py::call_guard<py::gil_scoped_release>());
     py::class_<Render>(m, "Render")

@@ -170,7 +170,7 @@ def render(scene=None, *, progress=None, base_dir=None, **options):
     `.result` (a Result, interrupted=True) and `.frames` (its frames) on the exception.
     """
     r, seen = _open(scene, options, "render", base_dir)
-    frames = _np.empty((r.frames, r.height, r.width, 3), dtype=_np.float32)
+    frames = _slowlight.frames_array(r.frames, r.height, r.width)
     r.start(frames, 1, progress is not None)
     try:
         for _ in _events(r, progress):
