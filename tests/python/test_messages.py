@@ -74,6 +74,32 @@ class Warnings(unittest.TestCase):
         self.assertEqual(r.frames.shape[0], 2)
 
 
+    def test_an_imported_files_warnings_come_first(self):
+        options = dict(ms.SMALL, frames=2, passes=1)
+        with open(ms.BOX) as f:
+            scene = json.load(f)
+        scene["shapes"].append({"type": "mesh", "file": "odd.obj", "scale": 0.2, "translate": [0, 0.5, 0]})
+        scene["time"] = {"start_ns": 0, "end_ns": 0.5, "frames": 2}  # and a warning of the scene's
+        with tempfile.TemporaryDirectory() as d:
+            with open(os.path.join(d, "odd.obj"), "w") as f:
+                f.write("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nl 1 2\nfoo 1\n")
+            path = os.path.join(d, "odd.json")
+            with open(path, "w") as f:
+                json.dump(scene, f)
+            status, _, err = ms.run_cli("render", path, "--exr-dir", d, "--no-progress", *ms.flags(options))
+            self.assertEqual(status, 0, err)
+            expected = [l[len("warning: "):] for l in err.splitlines() if l.startswith("warning: ")]
+            with warnings.catch_warnings(record=True) as caught:
+                warnings.simplefilter("always")
+                slowlight.render(path, **options)
+                info = slowlight.info(path, frames=2)
+        got = [str(w.message) for w in caught if issubclass(w.category, slowlight.SlowlightWarning)]
+        self.assertEqual(len(expected), 3, err)  # two of the OBJ file's, then the time window's
+        self.assertIn("unknown statement 'foo'", expected[1])
+        self.assertEqual(got, expected + expected)  # render(), then info()
+        self.assertEqual(info["warnings"], ["warning: " + w for w in expected])
+
+
 class Info(unittest.TestCase):
     def test_the_figures_info_prints(self):
         path = os.path.join(ms.SAMPLES, "spot_mesh_haze.json")

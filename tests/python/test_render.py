@@ -48,6 +48,11 @@ class RenderEqualsTheCommandLine(unittest.TestCase):
         c = slowlight.render(scene, base_dir=ms.SAMPLES, **dict(ms.SMALL, seed=None))
         self.assertFalse(np.array_equal(a.frames, c.frames))
 
+    def test_threads_change_no_pixel(self):
+        one = slowlight.render(ms.BOX, threads=1, **ms.SMALL)
+        self.assertEqual(one.stats["threads"], 1)
+        self.assertTrue(np.array_equal(one.frames, slowlight.render(ms.BOX, **ms.SMALL).frames))
+
     def test_a_model_file_renders_as_on_the_command_line(self):
         models = os.path.join(ms.SAMPLES, "models")
         model = next(os.path.join(models, n) for n in sorted(os.listdir(models)) if n.endswith((".glb", ".gltf", ".obj")))
