@@ -1,8 +1,8 @@
 // The C++ half of `import slowlight` (_slowlight): one render at a time as an object whose
 // frames, progress and end the Python half (python/slowlight/__init__.py) collects in its own
 // thread. The render runs on a thread of its own with the GIL released; a frame sink hands its
-// frames either into one preallocated float32 array (render()) or, one at a time, through a
-// bounded queue (frames(): at most `queue_frames` frames wait for Python, so a slow consumer
+// frames either into one preallocated float32 array (render()) or, one at a time and without a
+// copy (the pipeline's buffer itself, swapped for one Python dropped), through a bounded queue (frames(): at most `queue_frames` frames wait for Python, so a slow consumer
 // holds the pipeline's write stage instead of letting frames pile up).
 #include <malloc.h>
 #include <sys/mman.h>
@@ -44,7 +44,7 @@ std::optional<SceneText> scene_text(const std::optional<std::string>& json, cons
     return t;
 }
 
-// The streamed frames' pixel buffers, used again once Python drops a frame: a fresh 25 MB
+// Pixel buffers Python dropped, swapped into the pipeline for the next frame: a fresh 25 MB
 // buffer per 1080p frame cost its pages' first-touch faults every frame (on this kind of
 // machine eight times the copy itself), where the program reuses its frame buffers.
 struct FramePool {
@@ -116,6 +116,7 @@ public:
     }
     std::optional<double> exposure() const override { return exposure_; }
     void write_frame(int index, const std::vector<float>& rgb, bool, const Metadata&) override;
+    void take_frame(int index, std::vector<float>& rgb, bool, const Metadata&) override;
     void write_steady(const std::vector<float>& rgb, const Metadata&) override;
 
     std::optional<double> exposure_;
@@ -219,20 +220,21 @@ public:
     std::vector<double> per_frame_exposure() const { return sink_.per_frame_; }
     std::string stats_json() const { return render_.stats(stats_, sink_.exposure_.value_or(1.0)).dump(); }
 
-    // Called by the sink on the render's thread.
-    void frame(int index, const std::vector<float>& rgb) {
+    // Called by the sink on the render's thread. Streaming, the frame's own buffer goes to the
+    // queue and the pipeline gets one that Python dropped (or none: it then allocates).
+    void frame(int index, std::vector<float>& rgb) {
         if (into_data_) {
             const size_t n = rgb.size();
             std::memcpy(into_data_ + static_cast<size_t>(index) * n, rgb.data(), n * sizeof(float));
             frames_written_ = index + 1;
             return;
         }
-        std::vector<float> copy = pool_->take();
-        copy.assign(rgb.begin(), rgb.end());  // into a buffer whose pages are mapped already
         std::unique_lock lock(m_);
         cv_.wait(lock, [&] { return queue_.size() < static_cast<size_t>(queue_frames_) || abandoned_; });
         if (abandoned_) return;
-        queue_.emplace_back(index, std::move(copy));
+        std::vector<float> pixels = pool_->take();
+        pixels.swap(rgb);
+        queue_.emplace_back(index, std::move(pixels));
         frames_written_ = index + 1;
         cv_.notify_all();
     }
@@ -281,7 +283,11 @@ private:
     PipelineStats stats_;
 };
 
-void ModuleSink::write_frame(int index, const std::vector<float>& rgb, bool, const Metadata&) { r_.frame(index, rgb); }
+void ModuleSink::write_frame(int index, const std::vector<float>& rgb, bool on_disk, const Metadata& extra) {
+    std::vector<float> copy(rgb);
+    take_frame(index, copy, on_disk, extra);
+}
+void ModuleSink::take_frame(int index, std::vector<float>& rgb, bool, const Metadata&) { r_.frame(index, rgb); }
 void ModuleSink::write_steady(const std::vector<float>& rgb, const Metadata&) { r_.steady_image(rgb); }
 
 std::string info_json(const std::vector<std::string>& args, const std::optional<std::string>& json, const std::string& base_dir) {
