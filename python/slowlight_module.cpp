@@ -6,6 +6,7 @@
 // holds the pipeline's write stage instead of letting frames pile up).
 #include <malloc.h>
 #include <sys/mman.h>
+#include <unistd.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -26,6 +27,7 @@
 #include "foundation/message_lines.h"
 #include "foundation/warning_lines.h"
 #include "pipeline/embedded_render.h"
+#include "pipeline/memory_plan.h"
 #include "pipeline/scene_info.h"
 
 namespace py = pybind11;
@@ -92,6 +94,12 @@ py::array_t<float> frames_array(int frames, int height, int width) {
         size_t bytes;
     };
     const size_t bytes = std::max<size_t>(1, static_cast<size_t>(frames) * height * width * 3 * sizeof(float));
+    const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
+    if (pages > 0 && page > 0 && bytes > static_cast<size_t>(pages) * static_cast<size_t>(page))
+        throw InputError("render() keeps every frame: " + format_bytes(bytes) + " for " + std::to_string(frames) +
+                         " frames, more than this machine's " +
+                         format_bytes(static_cast<uint64_t>(pages) * static_cast<uint64_t>(page)) +
+                         "; stream them with slowlight.frames(), or use fewer frames or a smaller image");
     void* p = mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS | MAP_POPULATE, -1, 0);
     if (p == MAP_FAILED) throw std::bad_alloc();
     auto* m = new Mapping{p, bytes};

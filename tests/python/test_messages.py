@@ -45,6 +45,13 @@ class BadInput(unittest.TestCase):
             slowlight.render(scene)
         self.assertEqual(str(raised.exception), text.replace(path, "<dict>"))
 
+    def test_render_refuses_frames_larger_than_the_machine(self):
+        # 100000 frames of 4096 x 4096: 20 TB of frames (and of buckets, which the program refuses
+        # in its own words); render() would keep them all.
+        with self.assertRaises(ValueError) as raised:
+            slowlight.render(ms.BOX, frames=100000, width=4096, height=4096, sections=100000)
+        self.assertIn("slowlight.frames()", str(raised.exception))
+
     def test_a_missing_file_and_an_unknown_keyword(self):
         self.same_error("/nonexistent/scene.json", {})
         with self.assertRaisesRegex(TypeError, "did you mean 'frames'"):
