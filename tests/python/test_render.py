@@ -3,6 +3,9 @@
 equal to the whole array, in order and before the render ends."""
 import json
 import os
+import sys
+import threading
+import time
 import unittest
 
 import numpy as np
@@ -89,6 +92,33 @@ class Streaming(unittest.TestCase):
         stream.close()
         self.assertTrue(stream.interrupted)
         self.assertLess(stream.stats["sections_done"], 3)
+
+
+class TheGilIsFree(unittest.TestCase):
+    def test_python_threads_run_while_it_renders(self):
+        # With a switch interval far longer than the render, another thread gets the GIL only
+        # when the render gives it up: a render holding it would leave the counter where it was.
+        ticks, stop = [0], threading.Event()
+
+        def count():
+            while not stop.is_set():
+                ticks[0] += 1
+                time.sleep(0.0005)  # gives the GIL back each time, so the main thread gets it
+
+        before_interval = sys.getswitchinterval()
+        t = threading.Thread(target=count)
+        t.start()
+        sys.setswitchinterval(100)
+        seen = []
+        try:
+            slowlight.render(ms.BOX, progress=lambda *a: seen.append(ticks[0]), **dict(ms.SMALL, passes=20))
+        finally:
+            sys.setswitchinterval(before_interval)
+            stop.set()
+            t.join()
+        # Between the first pass and the last (the rendering itself, not the scene's set-up).
+        self.assertEqual(len(seen), 20)
+        self.assertGreater(seen[-1] - seen[0], 10, seen)
 
 
 if __name__ == "__main__":
