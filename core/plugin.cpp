@@ -17,6 +17,16 @@ std::filesystem::path executable_dir() {
     return std::filesystem::path(std::string(exe, static_cast<size_t>(n))).parent_path();
 }
 
+// The directory of the shared object that holds this code when it is not the program (the
+// Python module, whose executable is python3): its plugins are linked beside it.
+std::filesystem::path own_object_dir() {
+    Dl_info info{};
+    if (dladdr(reinterpret_cast<void*>(&own_object_dir), &info) == 0 || !info.dli_fname) return {};
+    std::error_code ec;
+    const std::filesystem::path p = std::filesystem::canonical(info.dli_fname, ec);
+    return ec ? std::filesystem::path() : p.parent_path();
+}
+
 }  // namespace
 
 Plugin load_plugin(const std::string& file, const std::string& what, std::initializer_list<const char*> names,
@@ -25,9 +35,13 @@ Plugin load_plugin(const std::string& file, const std::string& what, std::initia
     const int flags = RTLD_NOW | (scope == PluginScope::Global ? RTLD_GLOBAL : RTLD_LOCAL);
     // The one beside the program when it is there (its own error, not the library path's, is
     // then the one worth reporting); else whatever the library path finds.
-    const std::filesystem::path dir = executable_dir();
+    std::filesystem::path dir = executable_dir();
     std::error_code ec;
-    const bool beside = !dir.empty() && std::filesystem::exists(dir / file, ec);
+    bool beside = !dir.empty() && std::filesystem::exists(dir / file, ec);
+    if (!beside) {
+        dir = own_object_dir();
+        beside = !dir.empty() && std::filesystem::exists(dir / file, ec);
+    }
     void* lib = dlopen(beside ? (dir / file).c_str() : file.c_str(), flags);
     if (!lib) {
         const char* e = dlerror();

@@ -30,6 +30,12 @@ public:
     // first frame. `on_disk`: the frame's EXR is already there (a resumed section).
     virtual void write_frame(int index, const std::vector<float>& rgb, bool on_disk = false,
                              const Metadata& extra = {}) = 0;
+    // What the write stage calls: write_frame, unless the sink keeps the pixels (the Python
+    // module): it may then swap `rgb` with a buffer of its own, of any size (the pipeline reuses
+    // whatever it gets back), instead of copying a frame of megabytes.
+    virtual void take_frame(int index, std::vector<float>& rgb, bool on_disk, const Metadata& extra) {
+        write_frame(index, rgb, on_disk, extra);
+    }
     virtual void write_steady(const std::vector<float>& rgb, const Metadata& extra = {}) = 0;
     virtual void write_cube_plane(const std::vector<float>&) {}
 

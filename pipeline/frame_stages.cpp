@@ -101,7 +101,7 @@ bool PipelineRun::write(FrameImage& img) {
     if (root_) {
         if (img.exposure) outputs_.set_exposure_plan(*img.exposure);
         if (!img.steady.empty()) outputs_.write_steady(img.steady, frame_metadata(*img.section));
-        outputs_.write_frame(img.frame, img.rgb, img.section->from_disk, frame_metadata(*img.section));
+        outputs_.take_frame(img.frame, img.rgb, img.section->from_disk, frame_metadata(*img.section));
     }
     if (!img.before.empty()) outputs_.write_cube_plane(img.before);
     if (!img.bucket.empty()) outputs_.write_cube_plane(img.bucket);

@@ -42,18 +42,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
-// Refuse up front what could only end in running out of memory.
-void check_fits_machine(const MemoryPlan& plan) {
-    long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
-    if (pages <= 0 || page <= 0) return;
-    uint64_t ram = static_cast<uint64_t>(pages) * static_cast<uint64_t>(page);
-    uint64_t need = plan.buffers_in_flight() + plan.fixed_overhead_bytes;
-    if (need > ram)
-        throw InputError("the render needs about " + format_bytes(need) + " (" + format_bytes(plan.buffers_in_flight()) +
-                         " of time buckets with " + std::to_string(plan.sections) + " section(s)), more than this machine's " +
-                         format_bytes(ram) + "; use --sections, --max-memory, fewer frames or a smaller image");
-}
-
 // `slowlight info cube.npy`: a cube is not a scene; say what to do with it.
 void refuse_cube_as_scene(const std::string& path) {
     struct stat st {};
@@ -269,15 +257,23 @@ int RenderCommand::conclude(const PipelineStats& stats) {
     checkpointer_->remove_all();  // a finished render needs none of them
     if (!root_) return 0;
     if (stats.steady_black)
-        std::fprintf(stderr,
-                     "warning: %s: no light reached the camera except straight from the lights: every frame is black "
-                     "but for them (are the lights pointing away, or outside the room? see slowlight info)\n",
-                     scene_.source.c_str());
+        std::fprintf(stderr, "%s\n", steady_black_warning(scene_).c_str());
     print_final_line(*outputs_, o_.stats_path, t0_);
     return 0;
 }
 
 }  // namespace
+
+void check_fits_machine(const MemoryPlan& plan) {
+    long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
+    if (pages <= 0 || page <= 0) return;
+    uint64_t ram = static_cast<uint64_t>(pages) * static_cast<uint64_t>(page);
+    uint64_t need = plan.buffers_in_flight() + plan.fixed_overhead_bytes;
+    if (need > ram)
+        throw InputError("the render needs about " + format_bytes(need) + " (" + format_bytes(plan.buffers_in_flight()) +
+                         " of time buckets with " + std::to_string(plan.sections) + " section(s)), more than this machine's " +
+                         format_bytes(ram) + "; use --sections, --max-memory, fewer frames or a smaller image");
+}
 
 SceneDesc load_scene(const RunOptions& o) {
     if (!o.scene_path.empty()) refuse_cube_as_scene(o.scene_path);
@@ -287,10 +283,14 @@ SceneDesc load_scene(const RunOptions& o) {
     SceneDesc scene = o.scene_path.empty()          ? parse_default_scene()
                       : is_model_file(o.scene_path) ? scene_for_model(o.scene_path, o.gltf_light_units, budget)
                                                     : parse_scene_file(o.scene_path);
+    complete_scene(scene, o);
+    return scene;
+}
+
+void complete_scene(SceneDesc& scene, const RunOptions& o) {
     apply_gltf_light_units(scene, o.gltf_light_units);  // before the files are read
     resolve_imports(scene, budget);  // meshes, materials, textures and lights of imported files
     apply_overrides(scene, o.overrides);
-    return scene;
 }
 
 int render_command(RunOptions o, const std::vector<std::string>& argv, const RankSetup& ranks) {

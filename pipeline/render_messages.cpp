@@ -81,4 +81,10 @@ void print_final_line(const FrameOutputs& outputs, const std::string& stats_path
     std::fprintf(stderr, "slowlight: wrote %s in %.1f s\n", what.c_str(), seconds);
 }
 
+std::string steady_black_warning(const SceneDesc& scene) {
+    return "warning: " + scene.source +
+           ": no light reached the camera except straight from the lights: every frame is black "
+           "but for them (are the lights pointing away, or outside the room? see slowlight info)";
+}
+
 }  // namespace sl

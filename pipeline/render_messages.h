@@ -33,6 +33,9 @@ std::string what_was_written(const PipelineStats& stats, const FrameOutputs& out
 void print_interrupted(const PipelineStats& stats, const MemoryPlan& plan, const FrameOutputs& outputs,
                        const RunOptions& o, int passes, bool checkpoints, const std::string& again);
 
+// "warning: SCENE: no light reached the camera ...": every frame is black but for the emitters.
+std::string steady_black_warning(const SceneDesc& scene);
+
 // The last line of a run: what was written, how many frames, how long it took.
 void print_final_line(const FrameOutputs& outputs, const std::string& stats_path,
                       std::chrono::steady_clock::time_point t0);

@@ -18,7 +18,7 @@ uint64_t peak_rss_bytes() {
     return static_cast<uint64_t>(u.ru_maxrss) * 1024;  // Linux reports KiB
 }
 
-void write_stats_json(const std::string& path, const RunSummary& s) {
+nlohmann::json stats_json(const RunSummary& s) {
     const PipelineStats& p = s.pipeline;
     const SceneDesc& sc = *s.scene;
     nlohmann::json j;
@@ -77,6 +77,11 @@ void write_stats_json(const std::string& path, const RunSummary& s) {
                             {"seconds_total", s.checkpoint_seconds},
                             {"seconds_longest", s.checkpoint_longest}};
     if (s.preview_writes > 0) j["preview_writes"] = s.preview_writes;
+    return j;
+}
+
+void write_stats_json(const std::string& path, const RunSummary& s) {
+    const nlohmann::json j = stats_json(s);
     // A device or FIFO (/dev/stdout, a pipe) is written in place, a link through to its target
     // (atomic_file.h): never replaced by a rename.
     const std::string target = temp_sibling(path);

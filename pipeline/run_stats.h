@@ -1,5 +1,6 @@
 #pragma once
 // --stats FILE.json: machine-readable numbers about a run (times, photons, memory, exposure).
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "pipeline/memory_plan.h"
@@ -23,6 +24,8 @@ struct RunSummary {
 };
 
 uint64_t peak_rss_bytes();
+// The --stats file's numbers (the Python module returns the same ones).
+nlohmann::json stats_json(const RunSummary& s);
 void write_stats_json(const std::string& path, const RunSummary& s);
 
 }  // namespace sl

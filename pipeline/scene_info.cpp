@@ -160,4 +160,97 @@ void print_scene_info(std::ostream& out, std::ostream& err, const SceneDesc& s, 
     }
 }
 
+nlohmann::json scene_info_json(const SceneDesc& s, const RunOptions& options) {
+    using nlohmann::json;
+    const int ranks = std::max(1, options.ranks);
+    const Timeline tl = timeline_of(s);
+    RenderContext ctx(s);
+    const SceneFacts f = scene_facts(ctx);
+    json j;
+    j["scene"] = s.source;
+    j["width"] = s.camera.width;
+    j["height"] = s.camera.height;
+    j["shapes"] = s.shapes.size();
+    j["materials"] = s.materials.size();
+    j["lights"] = s.lights.size();
+    j["medium"] = s.medium.present;
+    j["triangles"] = f.triangles;
+    j["spheres"] = f.spheres;
+    j["size_m"] = {f.size.x, f.size.y, f.size.z};
+    j["meters_per_unit"] = s.meters_per_unit;
+    j["diagonal_m"] = f.diagonal_m;
+    j["crossing_ns"] = f.crossing_ns;
+    j["time"] = {{"start_ns", s.time.start_ns}, {"end_ns", s.time.end_ns}, {"frames", s.time.frames},
+                 {"frame_ns", tl.delta()}, {"frame_m", tl.delta() * kSpeedOfLight}, {"fps", s.time.fps}};
+    j["first_arrival_ns"] = f.first_arrival_ns ? json(*f.first_arrival_ns) : json(nullptr);
+    j["last_direct_arrival_ns"] = f.last_direct_arrival_ns ? json(*f.last_direct_arrival_ns) : json(nullptr);
+    j["camera_tof"] = s.render.camera_tof;
+    j["emission"] = s.emission.mode == EmissionMode::Constant ? "constant" : "pulse";
+    j["render"] = {{"passes", s.render.passes}, {"photons_per_pass", s.render.photons_per_pass},
+                   {"max_depth", s.render.max_depth}, {"alpha", s.render.alpha}, {"seed", s.render.seed}};
+    j["imports"] = {{"triangles", imported_triangles(s)}, {"emissive_triangles", emissive_triangles(s)},
+                    {"mesh_bytes", imported_mesh_bytes(s)}, {"bvh_bytes", imported_bvh_bytes(s)},
+                    {"textures", s.textures.size()}, {"texture_bytes", texture_bytes(s)}};
+    std::vector<const ShapeDesc*> from(s.lights.size(), nullptr);
+    for (const ShapeDesc& sh : s.shapes)
+        for (int i = sh.first_light; i < sh.first_light + sh.light_count; ++i) from[static_cast<size_t>(i)] = &sh;
+    json powers = json::array();
+    for (size_t i = 0; i < s.lights.size(); ++i) {
+        const LightDesc& l = s.lights[i];
+        json p = {{"type", light_type_name(l.type)}, {"watts", light_watts(l, f.size)}};
+        if (l.type == LightType::Sun) p["irradiance_w_m2"] = (double(l.irradiance.x) + l.irradiance.y + l.irradiance.z) / 3;
+        if (from[i]) p["from"] = from[i]->file;
+        powers.push_back(p);
+    }
+    j["light_powers"] = powers;
+    json emissive = json::array();
+    for (const ShapeDesc& sh : s.shapes)
+        if (const double w = emissive_watts(s, sh); w > 0) emissive.push_back({{"file", sh.file}, {"watts", w}});
+    j["emissive_surfaces"] = emissive;
+    j["warnings"] = scene_warnings(ctx, f);
+
+    RunOptions with_video = options;  // as print_scene_info: a render with an .mp4
+    if (with_video.output.empty()) with_video.output = "out.mp4";
+    const MemoryBaseline baseline = memory_baseline(s, with_video);
+    json memory;
+    memory["fixed_bytes"] = baseline.total();
+    json terms = json::object();
+    for (const auto& [name, bytes] : baseline.terms()) terms[name] = bytes;
+    memory["fixed_terms"] = terms;
+    memory["records_per_path"] = baseline.records_per_path;
+    memory["ranks"] = ranks;
+    json by_k = json::array();
+    for (int k : {1, 2, 4, 8}) {
+        if (k > s.time.frames) break;
+        const uint64_t b = section_buffer_bytes(s, k, ranks);
+        by_k.push_back({{"sections", k}, {"bucket_bytes", b}, {"whole_process_bytes", b + baseline.total()}});
+    }
+    memory["by_sections"] = by_k;
+    if (options.max_memory_bytes || options.max_bucket_bytes) {
+        try {
+            const MemoryPlan plan = plan_memory(s, with_video, baseline);
+            memory["planned"] = {{"sections", plan.sections}, {"bucket_bytes", plan.buffer_bytes_per_section},
+                                 {"whole_process_bytes", plan.buffers_in_flight() + baseline.total()}};
+        } catch (const InputError& e) {
+            memory["planned"] = {{"error", e.what()}};
+        }
+    } else {
+        json smallest = json::object();
+        for (uint64_t mib : {256ull, 1024ull, 4096ull}) {
+            RunOptions o;
+            o.max_memory_bytes = mib << 20;
+            o.ranks = ranks;
+            const std::string label = mib >= 1024 ? std::to_string(mib / 1024) + "G" : std::to_string(mib) + "M";
+            try {
+                smallest[label] = plan_memory(s, o, baseline).sections;
+            } catch (const InputError&) {
+                smallest[label] = nullptr;  // does not fit
+            }
+        }
+        memory["smallest_sections"] = smallest;
+    }
+    j["memory"] = memory;
+    return j;
+}
+
 }  // namespace sl

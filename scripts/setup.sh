@@ -12,7 +12,8 @@ packages=(
   libavformat-dev libavcodec-dev libavfilter-dev libswscale-dev libavutil-dev ffmpeg fonts-dejavu-core
   libxxhash-dev xxhash nlohmann-json3-dev libtinygltf-dev libgtest-dev libbenchmark-dev
   gnuplot-nox libopenmpi-dev openmpi-bin
-  libhdf5-dev python3-h5py python3-numpy
+  libhdf5-dev python3-h5py  # --hdf5 (docs/transient-outputs.md) and its read-back test
+  pybind11-dev python3-dev python3-numpy  # the Python module (docs/python.md)
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -9,6 +9,7 @@
 #include "foundation/byte_sizes.h"
 #include "foundation/errors.h"
 #include "foundation/message_lines.h"
+#include "foundation/warning_lines.h"
 #include "core/import/imported_file.h"
 #include "core/placement.h"
 #include "core/texture.h"
@@ -127,7 +128,7 @@ void resolve_imports(SceneDesc& scene, const ImportBudget& budget) {
         ImportedFile& f = files[fi].second;
         const Placement place{s};
         for (const std::string& w : counted_lines(f.warnings))
-            if (warned.insert(w).second) std::fprintf(stderr, "%s\n", message_line("warning: ", w).c_str());
+            if (warned.insert(w).second) emit_warning(message_line("warning: ", w));
         // Materials: the entry's own for every triangle, or the file's (with their textures).
         std::vector<int> material_map(f.materials.size(), s.material);
         if (s.material < 0) {
@@ -141,15 +142,11 @@ void resolve_imports(SceneDesc& scene, const ImportBudget& budget) {
                 TextureDesc d = it.desc;
                 auto img = load_texture(source_of(it));
                 if (img->replaced > 0)  // said once per texture, with how many
-                    std::fprintf(stderr, "%s\n",
-                                 message_line("warning: ", d.file + ": " + std::to_string(img->replaced) +
-                                                               " texel values are NaN, infinite or negative: drawn as 0")
-                                     .c_str());
+                    emit_warning(message_line("warning: ", d.file + ": " + std::to_string(img->replaced) +
+                                                               " texel values are NaN, infinite or negative: drawn as 0"));
                 if (img->clamped > 0)
-                    std::fprintf(stderr, "%s\n",
-                                 message_line("warning: ", d.file + ": " + std::to_string(img->clamped) +
-                                                               " texel values are above 65504 (the largest half float): drawn as 65504")
-                                     .c_str());
+                    emit_warning(message_line("warning: ", d.file + ": " + std::to_string(img->clamped) +
+                                                               " texel values are above 65504 (the largest half float): drawn as 65504"));
                 img->wrap_s = d.wrap_s;
                 img->wrap_t = d.wrap_t;
                 d.image = std::move(img);

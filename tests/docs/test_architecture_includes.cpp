@@ -27,7 +27,7 @@ namespace fs = std::filesystem;
 const char* const kLibraries[] = {"tbb/",   "oneapi/",      "nlohmann/",    "embree3/",        "embree4/",
                                   "OpenEXR/", "Imath/",     "libav",        "libsw",           "mpi.h",
                                   "OpenImageIO/", "tiny_gltf.h", "tiny_obj_loader.h", "xxhash.h", "stb_",
-                                  "hdf5.h"};
+                                  "hdf5.h", "pybind11/", "Python.h"};
 
 // The source tree's folders that are no room: no rule applies to them.
 const char* const kNotRooms[] = {"tests", "bench", "fuzz", "docs", "samples", "scripts"};
