@@ -44,7 +44,7 @@ inline uint16_t float_to_half(float f) {
     uint32_t m = man >> shift;
     if (rest > half_way || (rest == half_way && (m & 1u))) ++m;
     if (exp < 113) return static_cast<uint16_t>(sign | m);  // subnormal (a carry into 0x400 is the smallest normal)
-    return static_cast<uint16_t>(sign | (static_cast<uint32_t>(exp - 112) << 10) + (m - 0x400u));
+    return static_cast<uint16_t>(sign | ((static_cast<uint32_t>(exp - 112) << 10) + (m - 0x400u)));
 }
 
 }  // namespace sl

@@ -275,13 +275,15 @@ void check_fits_machine(const MemoryPlan& plan) {
                          format_bytes(ram) + "; use --sections, --max-memory, fewer frames or a smaller image");
 }
 
+// --max-memory bounds what the imports may decode to, checked before they are decoded.
+static ImportBudget import_budget(const RunOptions& o) {
+    return {o.max_memory_bytes.value_or(0), o.max_memory_bytes ? "--max-memory " + format_bytes(*o.max_memory_bytes) : ""};
+}
+
 SceneDesc load_scene(const RunOptions& o) {
     if (!o.scene_path.empty()) refuse_cube_as_scene(o.scene_path);
-    // --max-memory bounds what the imports may decode to, checked before they are decoded.
-    const ImportBudget budget{o.max_memory_bytes.value_or(0),
-                              o.max_memory_bytes ? "--max-memory " + format_bytes(*o.max_memory_bytes) : ""};
     SceneDesc scene = o.scene_path.empty()          ? parse_default_scene()
-                      : is_model_file(o.scene_path) ? scene_for_model(o.scene_path, o.gltf_light_units, budget)
+                      : is_model_file(o.scene_path) ? scene_for_model(o.scene_path, o.gltf_light_units, import_budget(o))
                                                     : parse_scene_file(o.scene_path);
     complete_scene(scene, o);
     return scene;
@@ -289,7 +291,7 @@ SceneDesc load_scene(const RunOptions& o) {
 
 void complete_scene(SceneDesc& scene, const RunOptions& o) {
     apply_gltf_light_units(scene, o.gltf_light_units);  // before the files are read
-    resolve_imports(scene, budget);  // meshes, materials, textures and lights of imported files
+    resolve_imports(scene, import_budget(o));  // meshes, materials, textures and lights of imported files
     apply_overrides(scene, o.overrides);
 }
 
