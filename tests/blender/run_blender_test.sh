@@ -1,0 +1,12 @@
+#!/usr/bin/env bash
+# Runs one add-on test in a fresh factory-startup Blender, headless, with its own empty user
+# folders (the add-on is installed there from the zip the build made, then removed with them).
+#   run_blender_test.sh BLENDER TEST.py ADDON.zip SLOWLIGHT
+set -euo pipefail
+blender=$1 test=$2 zip=$3 program=$4
+home=$(mktemp -d "${TMPDIR:-/tmp}/slowlight_blender_test.XXXXXX")
+trap 'rm -rf "$home"' EXIT
+export BLENDER_USER_SCRIPTS=$home/scripts BLENDER_USER_CONFIG=$home/config
+export SLOWLIGHT_TEST_WORK=$home/work
+mkdir -p "$BLENDER_USER_SCRIPTS" "$BLENDER_USER_CONFIG" "$SLOWLIGHT_TEST_WORK"
+nice -n 15 "$blender" -b --factory-startup --python-exit-code 1 -P "$test" -- "$zip" "$program"
