@@ -57,13 +57,11 @@ class SlowlightRenderEngine(bpy.types.RenderEngine):
 
     def _render_video(self, scene, depsgraph):
         video, exr = video_paths(scene.slowlight)
+        # The scene is kept beside the video, so that the command the program prints after Esc
+        # (--resume) still finds it.
+        folder = os.path.splitext(video)[0] + "_scene"
         os.makedirs(os.path.dirname(video) or ".", exist_ok=True)
-        folder = tempfile.mkdtemp(prefix="slowlight_video_")
-        try:
-            status = self._run(scene, depsgraph, folder, exr, video=video)
-        finally:
-            if not os.environ.get("SLOWLIGHT_KEEP_TEMP"):
-                shutil.rmtree(folder, ignore_errors=True)
+        status = self._run(scene, depsgraph, folder, exr, video=video)
         _video["exr_dir"], _video["frames"] = exr, scene.slowlight.frames
         if status == 0:
             self.report({'INFO'}, "slowlight: wrote %s" % video)
@@ -91,13 +89,10 @@ class SlowlightRenderEngine(bpy.types.RenderEngine):
         errors = []
 
         def line(text):
-            if text.startswith("error:") or ": error:" in text:
+            k = runner.kind(text)
+            if k == 'ERROR':
                 errors.append(text)
-                self.report({'ERROR'}, text)
-            elif text.startswith("warning:") or ": warning:" in text:
-                self.report({'WARNING'}, text)
-            else:
-                self.report({'INFO'}, text)
+            self.report({k}, text)
 
         status = runner.run(cmd, on_progress=self.update_progress, should_stop=self.test_break, on_line=line)
         if status == runner.INTERRUPTED:

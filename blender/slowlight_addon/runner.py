@@ -44,6 +44,15 @@ def command(settings, program, scene_json, exr_dir, video=None, still=False):
     return cmd
 
 
+def kind(line):
+    """The Blender report type of one line the program printed."""
+    if line.startswith("error:") or ": error:" in line:
+        return 'ERROR'
+    if line.startswith("warning:") or ": warning:" in line:
+        return 'WARNING'
+    return 'INFO'
+
+
 def run(cmd, on_progress=None, should_stop=None, on_line=None, poll_seconds=0.1):
     """Runs cmd to its end; returns its exit status. on_progress(fraction), on_line(text) for every
     line it prints (progress redraws excluded); should_stop() -> True sends SIGINT once."""
