@@ -95,6 +95,8 @@ class SlowlightRenderEngine(bpy.types.RenderEngine):
             self.report({k}, text)
 
         status = runner.run(cmd, on_progress=self.update_progress, should_stop=self.test_break, on_line=line)
+        if status == 0:
+            self.update_progress(1.0)
         if status == runner.INTERRUPTED:
             self.report({'WARNING'}, "slowlight: stopped; the frames so far are kept in %s" % exr)
         elif status != 0 and not errors:
