@@ -13,6 +13,9 @@ packages=(
   libxxhash-dev xxhash nlohmann-json3-dev libtinygltf-dev libgtest-dev libbenchmark-dev
   gnuplot-nox libopenmpi-dev openmpi-bin
 )
+# Blender runs only the Blender add-on's tests (tests/blender/, registered when `blender` is on
+# PATH); the demo does not need it.
+if [[ $what == test ]]; then packages+=(blender); fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
