@@ -14,8 +14,9 @@ packages=(
   gnuplot-nox libopenmpi-dev openmpi-bin
 )
 # Blender runs only the Blender add-on's tests (tests/blender/, registered when `blender` is on
-# PATH); the demo does not need it.
-if [[ $what == test ]]; then packages+=(blender); fi
+# PATH; xvfb-run gives the one that runs Blender's interface a virtual display); the demo needs
+# neither.
+if [[ $what == test ]]; then packages+=(blender xvfb xauth); fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

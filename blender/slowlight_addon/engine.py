@@ -6,6 +6,7 @@
 import os
 import shutil
 import tempfile
+import threading
 
 import bpy
 
@@ -78,10 +79,12 @@ class SlowlightRenderEngine(bpy.types.RenderEngine):
             return 2
         self.update_stats("slowlight", "writing the scene")
         try:
-            scene_json, warnings = scene_writer.write_scene(scene, folder, depsgraph)
+            scene_json, warnings = _write_on_main_thread(scene, folder, depsgraph, self.test_break)
         except Exception as e:  # the scene cannot be written: say why, render nothing
             self.report({'ERROR'}, "slowlight: %s" % e)
             return 2
+        if scene_json is None:  # Esc while waiting for the interface
+            return runner.INTERRUPTED
         for w in warnings:
             self.report({'WARNING'}, "slowlight: " + w)
         cmd = runner.command(settings, program, scene_json, exr, video=video, still=still)
@@ -112,6 +115,36 @@ class SlowlightRenderEngine(bpy.types.RenderEngine):
                 self.report({'ERROR'}, "slowlight: %s was not written" % path)
         finally:
             self.end_result(result)
+
+
+def _write_on_main_thread(scene, folder, depsgraph, should_stop):
+    """write_scene on Blender's main thread. Headless, a render runs there; in the interface F12
+    runs the engine on the render thread, whose context the glTF exporter cannot work in: the
+    writing is handed to the main loop through a timer, with the render's view layer."""
+    if threading.current_thread() is threading.main_thread():
+        return scene_writer.write_scene(scene, folder, depsgraph)
+    layer = depsgraph.view_layer.name
+    done, box = threading.Event(), {}
+
+    def job():
+        try:
+            wm = bpy.context.window_manager
+            win = wm.windows[0] if wm and wm.windows else None
+            with bpy.context.temp_override(window=win, scene=scene, view_layer=scene.view_layers[layer]):
+                box["result"] = scene_writer.write_scene(scene, folder)
+        except Exception as e:  # handed back to the render thread
+            box["error"] = e
+        done.set()
+        return None
+
+    bpy.app.timers.register(job, first_interval=0.0)
+    while not done.wait(0.1):
+        if should_stop():
+            # The job may still run; its result is simply not used.
+            return None, []
+    if "error" in box:
+        raise box["error"]
+    return box["result"]
 
 
 def _open_clip(path):

@@ -75,13 +75,14 @@ def build(width=96, height=72):
     add("panel", [(-1.9, 1.2, 0.4), (-1.3, 1.2, 0.4), (-1.3, 1.2, 1.0), (-1.9, 1.2, 1.0)], [(0, 1, 2, 3)],
         emission("glow", EMISSION_STRENGTH))
     bpy.ops.mesh.primitive_uv_sphere_add(segments=48, ring_count=24, radius=0.5, location=(1.1, 1.0, 0.5))
-    sphere = bpy.context.active_object
-    bpy.ops.object.shade_smooth()
+    sphere = bpy.context.view_layer.objects.active
+    for poly in sphere.data.polygons:
+        poly.use_smooth = True
     sphere.name = "sphere"
     sphere.data.materials.append(principled("polished metal", 0.9, metallic=1.0, roughness=0.05))
     c, h = (HAZE_MIN + HAZE_MAX) / 2, (HAZE_MAX - HAZE_MIN) / 2
     bpy.ops.mesh.primitive_cube_add(size=2, location=c, scale=h)
-    box = bpy.context.active_object
+    box = bpy.context.view_layer.objects.active
     box.name = "haze"
     box.data.materials.append(haze("haze", HAZE_DENSITY))
 
