@@ -15,6 +15,10 @@ packages=(
   libhdf5-dev python3-h5py  # --hdf5 (docs/transient-outputs.md) and its read-back test
   pybind11-dev python3-dev python3-numpy  # the Python module (docs/python.md)
 )
+# Blender runs only the Blender add-on's tests (tests/blender/, registered when `blender` is on
+# PATH; xvfb-run gives the one that runs Blender's interface a virtual display); the demo needs
+# neither.
+if [[ $what == test ]]; then packages+=(blender xvfb xauth); fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
