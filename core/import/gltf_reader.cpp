@@ -598,7 +598,9 @@ private:
             for (size_t i = 0; i < pv.count; ++i) {
                 Vec3 v{component(pv, i, 0), component(pv, i, 1), component(pv, i, 2)};
                 if (!is_finite(v)) fail(where + ": POSITION " + std::to_string(i) + " is not finite");
-                out.positions.push_back(apply_point(m, v));
+                const Vec3 placed = apply_point(m, v);  // a huge vertex times a node's scale can overflow
+                if (!is_finite(placed)) fail(where + ": POSITION " + std::to_string(i) + " is not finite once placed by its nodes");
+                out.positions.push_back(placed);
             }
             // Normals: this primitive's, or (if it has none while others do) zero (= flat).
             if (nv) {
