@@ -25,6 +25,8 @@ cmake --build build-fuzz --target "${targets[@]/#/fuzz_}"
 mkdir -p build-fuzz/findings
 for t in "${targets[@]}"; do mkdir -p "build-fuzz/corpus/$t"; done
 cp samples/*.json build-fuzz/corpus/scene/
+# Inputs that once crashed a target (fuzz/regressions/), replayed as seeds of their target.
+cp fuzz/regressions/*.glb build-fuzz/corpus/gltf/
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nvt 0 0\nf 1/1/1 2/1/1 3/1/1\nf 1 2 3 4\n' > build-fuzz/corpus/obj/tri.obj
 printf 'o q\nv -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nusemtl m\nf -4 -3 -2 -1\n' > build-fuzz/corpus/obj/quad.obj
 # A glTF seed: the Cornell box of the import tests is made by a test; here, the smallest valid
