@@ -10,7 +10,7 @@ import threading
 
 import bpy
 
-from . import runner, scene_writer
+from . import properties, runner, scene_writer
 
 # One video per Render Animation: the first frame renders it, the others read its frames.
 _video = {"exr_dir": None, "frames": 0}
@@ -63,11 +63,11 @@ class SlowlightRenderEngine(bpy.types.RenderEngine):
         folder = os.path.splitext(video)[0] + "_scene"
         os.makedirs(os.path.dirname(video) or ".", exist_ok=True)
         status = self._run(scene, depsgraph, folder, exr, video=video)
-        _video["exr_dir"], _video["frames"] = exr, scene.slowlight.frames
+        _video["exr_dir"], _video["frames"] = exr, properties.video_frames(scene)
         if status == 0:
             self.report({'INFO'}, "slowlight: wrote %s" % video)
             if not bpy.app.background:
-                bpy.app.timers.register(lambda: _open_clip(video), first_interval=0.1)
+                _open_clip_when_done(video)
         return status == 0
 
     def _run(self, scene, depsgraph, folder, exr, still=False, video=None):
@@ -147,18 +147,43 @@ def _write_on_main_thread(scene, folder, depsgraph, should_stop):
     return box["result"]
 
 
+def _open_clip_when_done(path):
+    """Opens the video once Blender has finished the whole Render Animation (its later frames
+    still use the render window)."""
+    def handler(*_):
+        for hs in (bpy.app.handlers.render_complete, bpy.app.handlers.render_cancel):
+            if handler in hs:
+                hs.remove(handler)
+        bpy.app.timers.register(lambda: _open_clip(path), first_interval=0.1)
+    bpy.app.handlers.render_complete.append(handler)
+    bpy.app.handlers.render_cancel.append(handler)
+
+
 def _open_clip(path):
-    """Opens the finished video in a Movie Clip Editor (the first one open, if any)."""
+    """Shows the finished video in a Movie Clip Editor: one already open, else the render window's
+    image editor (where the render was shown) turned into one, else a new window."""
     try:
         clip = bpy.data.movieclips.load(path, check_existing=True)
     except RuntimeError:
         return None
-    for window in bpy.context.window_manager.windows:
-        for area in window.screen.areas:
-            if area.type == 'CLIP_EDITOR':
-                area.spaces.active.clip = clip
-                return None
+    wm = bpy.context.window_manager
+    areas = [a for w in wm.windows for a in w.screen.areas]
+    target = next((a for a in areas if a.type == 'CLIP_EDITOR'), None)
+    if target is None:
+        target = next((a for a in areas if a.type == 'IMAGE_EDITOR' and a.spaces.active.image is not None
+                       and a.spaces.active.image.type == 'RENDER_RESULT'), None)
+    if target is None and wm.windows:
+        with bpy.context.temp_override(window=wm.windows[0]):
+            bpy.ops.wm.window_new()
+        target = max(wm.windows[-1].screen.areas, key=lambda a: a.width * a.height)
+    if target is not None:
+        target.type = 'CLIP_EDITOR'
+        target.spaces.active.clip = clip
     return None
+
+
+# Eevee's engine name: BLENDER_EEVEE in 3.x and 4.0-4.1, BLENDER_EEVEE_NEXT in 4.2-4.4.
+EEVEE_IDS = {'BLENDER_EEVEE', 'BLENDER_EEVEE_NEXT'}
 
 
 def compatible_panels():
@@ -168,7 +193,7 @@ def compatible_panels():
     for name in dir(bpy.types):
         cls = getattr(bpy.types, name)
         engines = getattr(cls, "COMPAT_ENGINES", None)
-        if isinstance(engines, set) and 'BLENDER_EEVEE' in engines and not name.startswith(skip):
+        if isinstance(engines, set) and engines & EEVEE_IDS and not name.startswith(skip):
             yield cls
 
 

@@ -5,8 +5,11 @@ from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, St
 
 
 class SlowlightSettings(bpy.types.PropertyGroup):
+    use_timeline: BoolProperty(name="Frames from the timeline", default=True,
+                               description="The video has one frame per frame of Blender's frame range "
+                                           "(Start to End), so Render Animation fills the timeline")
     frames: IntProperty(name="Frames", default=48, min=1, max=100000,
-                        description="Frames of the video (time.frames)")
+                        description="Frames of the video (time.frames) when not taken from the timeline")
     start_ns: FloatProperty(name="Start (ns)", default=0.0, min=0.0,
                             description="Arrival time at the first frame's start, in nanoseconds")
     end_ns: FloatProperty(name="End (ns)", default=12.0, min=0.001,
@@ -37,6 +40,14 @@ class SlowlightSettings(bpy.types.PropertyGroup):
                                description="The video (.mp4, .mkv, .mov, .webm); its EXR frames go beside it")
     program: StringProperty(name="Program", default="slowlight", subtype='FILE_PATH',
                             description="The slowlight program (a path, or a name found on PATH)")
+
+
+def video_frames(scene):
+    """The video's number of frames: Blender's frame range, or the panel's own number."""
+    st = scene.slowlight
+    if st.use_timeline:
+        return max(1, scene.frame_end - scene.frame_start + 1)
+    return st.frames
 
 
 def register():

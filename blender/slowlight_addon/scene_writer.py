@@ -14,7 +14,7 @@ import os
 import bpy
 from mathutils import Vector
 
-from . import volume
+from . import properties, volume
 
 C_M_PER_NS = 0.299792458
 
@@ -189,7 +189,7 @@ def _render_json(scene):
     st = scene.slowlight
     fps = scene.render.fps / scene.render.fps_base
     out = {
-        "time": {"start_ns": st.start_ns, "end_ns": st.end_ns, "frames": st.frames,
+        "time": {"start_ns": st.start_ns, "end_ns": st.end_ns, "frames": properties.video_frames(scene),
                  "fps": int(round(fps)) if abs(fps - round(fps)) < 1e-6 else fps},
         "emission": {"mode": st.emission.lower()},
         "render": {"passes": st.passes, "photons_per_pass": st.photons, "camera_tof": st.camera_tof},

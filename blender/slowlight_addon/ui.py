@@ -2,7 +2,7 @@
 # operator that fills in the time window from the scene's size.
 import bpy
 
-from . import scene_writer
+from . import properties, scene_writer
 
 
 class SLOWLIGHT_OT_suggest_time(bpy.types.Operator):
@@ -39,7 +39,13 @@ class RENDER_PT_slowlight(bpy.types.Panel):
         layout = self.layout
         layout.use_property_split = True
         col = layout.column(heading="Time")
-        col.prop(st, "frames")
+        col.prop(st, "use_timeline")
+        if st.use_timeline:
+            col.label(text="%d frames (Blender frames %d to %d)" % (properties.video_frames(context.scene),
+                                                                     context.scene.frame_start,
+                                                                     context.scene.frame_end))
+        else:
+            col.prop(st, "frames")
         col.prop(st, "start_ns")
         col.prop(st, "end_ns")
         diagonal, end_ns = scene_writer.suggested_end_ns(context.scene)

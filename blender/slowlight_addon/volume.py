@@ -64,6 +64,10 @@ def _from_node(node, where, warnings):
     m = Medium()
     kind = node.bl_idname
     if kind == 'ShaderNodeVolumeScatter':
+        phase = getattr(node, "phase", 'HENYEY_GREENSTEIN')  # a choice since Blender 4.3
+        if phase != 'HENYEY_GREENSTEIN':
+            warnings.append("%s: %s's phase function %s is drawn as Henyey-Greenstein with its Anisotropy"
+                            % (where, node.name, phase))
         density = max(_value(node, "Density", where, warnings), 0.0)
         _scatter(m, _value(node, "Color", where, warnings), density,
                  _value(node, "Anisotropy", where, warnings))

@@ -20,7 +20,7 @@ check(scene.render.engine == 'SLOWLIGHT', "slowlight is a render engine")
 check(hasattr(bpy.types, "RENDER_PT_slowlight"), "its panel is registered")
 check('SLOWLIGHT' in bpy.types.RENDER_PT_format.COMPAT_ENGINES, "Blender's format panel shows for it")
 st = scene.slowlight
-for name in ("frames", "start_ns", "end_ns", "emission", "pulse_width_ns", "passes", "photons",
+for name in ("use_timeline", "frames", "start_ns", "end_ns", "emission", "pulse_width_ns", "passes", "photons",
              "use_time_limit", "time_limit_min", "split", "sections", "max_memory", "camera_tof",
              "label_time", "video_path", "program"):
     check(hasattr(st, name), "scene.slowlight.%s exists" % name)

@@ -1,7 +1,7 @@
 # F12 and Render Animation as Blender's interface runs them (INVOKE: the engine on the render
 # thread, the interface live), in a virtual display (xvfb-run): the scene is handed to the main
 # loop for writing, the steady image matches the same render run on the main thread, the video is
-# written and opened as a movie clip. Run by run_blender_test.sh with BLENDER_UI set.
+# written and shown in a Movie Clip Editor (the render window's editor, turned into one). Run by run_blender_test.sh with BLENDER_UI set.
 import os
 import sys
 
@@ -52,10 +52,10 @@ def step():
         addon_env.install(zip_path)
         scene.render.engine = 'SLOWLIGHT'
         st = scene.slowlight
-        st.program, st.passes, st.photons, st.frames, st.end_ns = program, 8, 50000, 8, 30.0
+        st.program, st.passes, st.photons, st.end_ns = program, 8, 50000, 30.0
         st.video_path = os.path.join(work, "ui.mp4")
         scene.render.filepath = os.path.join(work, "frames", "f")
-        scene.frame_start = scene.frame_end = 1
+        scene.frame_start, scene.frame_end = 1, 3  # a video of 3 frames, from the timeline
         bpy.app.handlers.render_complete.append(on_complete)
         with override():
             bpy.ops.render.render('INVOKE_DEFAULT')  # F12
@@ -75,10 +75,18 @@ def step():
         video = os.path.join(work, "ui.mp4")
         if not (os.path.exists(video) and os.path.getsize(video) > 0):
             finish(1, "Render Animation in the interface wrote the video")
-        if not any(os.path.realpath(bpy.path.abspath(c.filepath)) == os.path.realpath(video)
-                   for c in bpy.data.movieclips):
+        shown = [a for w in bpy.context.window_manager.windows for a in w.screen.areas
+                 if a.type == 'CLIP_EDITOR' and a.spaces.active.clip is not None and
+                 os.path.realpath(bpy.path.abspath(a.spaces.active.clip.filepath)) == os.path.realpath(video)]
+        if not shown:
+            state["waits"] = state.get("waits", 0) + 1
+            if state["waits"] > 60:
+                finish(1, "the video is shown in a Movie Clip Editor within 30 s of the render")
             return 0.5  # the clip is opened by a timer after the render
-        finish(0, "Render Animation in the interface wrote the video and opened it as a movie clip")
+        clip = shown[0].spaces.active.clip
+        if clip.frame_duration != 3:
+            finish(1, "the clip has the timeline's 3 frames (it has %d)" % clip.frame_duration)
+        finish(0, "Render Animation in the interface wrote the video and showed it in a Movie Clip Editor")
     return 0.5
 
 

@@ -17,6 +17,7 @@ runner, writer = addon.runner, addon.scene_writer
 
 st = scene.slowlight
 st.program, st.passes, st.photons, st.frames, st.end_ns = program, 16, 200000, 8, 30.0
+st.use_timeline = False  # the panel's own number of frames, not the factory timeline's 250
 check(runner.program_path(st) == os.path.realpath(program) or runner.program_path(st) == program,
       "the program is found at its path")
 scene_json, _ = writer.write_scene(scene, os.path.join(work, "a"))

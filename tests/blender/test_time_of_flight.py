@@ -1,7 +1,8 @@
 # Render Animation through the SLOWLIGHT engine (the whole video rendered once, as a child
 # process, its EXR frames beside it): with a one-frame pulse and the camera's time of flight, a
 # floor pixel lit by the lamp is brightest in the frame holding lamp -> floor -> camera over c,
-# to within one frame.
+# to within one frame. The video takes its frames from Blender's frame range (1 to 40), and
+# each Blender frame receives the video frame of the same place in the range.
 import math
 import os
 import sys
@@ -25,17 +26,18 @@ check = addon_env.check
 scene.render.engine = 'SLOWLIGHT'
 st = scene.slowlight
 st.program, st.passes, st.photons = program, 16, 50000
-st.frames, st.start_ns, st.end_ns = 40, 0.0, 40.0
+st.start_ns, st.end_ns = 0.0, 40.0
 st.emission, st.camera_tof = 'PULSE', True
 st.video_path = os.path.join(work, "tof.mp4")
-scene.frame_start = scene.frame_end = 1
+scene.frame_start, scene.frame_end = 1, 40  # 40 frames of 1 ns, from the timeline
 scene.render.image_settings.file_format = "OPEN_EXR"
 scene.render.filepath = os.path.join(work, "blender_frames", "f")
 bpy.ops.render.render(animation=True)
 exr_dir = os.path.join(work, "tof_exr")
 check(os.path.getsize(st.video_path) > 0, "Render Animation wrote the video")
 check(os.path.exists(os.path.join(exr_dir, "frame_0039.exr")), "and its 40 EXR frames beside it")
-check(len(os.listdir(os.path.join(work, "blender_frames"))) == 1, "Blender got its frame from the engine")
+blender_frames = sorted(os.listdir(os.path.join(work, "blender_frames")))
+check(len(blender_frames) == 40, "Blender got one frame from the engine per timeline frame (%d)" % len(blender_frames))
 
 # The floor point under the lamp, the pixel that sees it, and the floor point at that pixel's centre.
 cam = scene.camera
@@ -57,3 +59,9 @@ print("pixel (%d, %d), floor point %s, lamp->floor->camera %.3f ns: frame %d exp
 print("values around it: %s" % ["%.3g" % x for x in values[max(0, expected - 3):expected + 4]])
 check(values[brightest] > 0, "the pixel is lit")
 check(abs(brightest - expected) <= 1, "the lit floor pixel's time of flight is right to within one frame")
+
+# Blender's frame k holds the video's frame k - 1 (its own output of the engine's result).
+blender_value = exr_image.load(os.path.join(work, "blender_frames", "f%04d.exr" % (brightest + 1)))[py][px]
+check(abs(blender_value / values[brightest] - 1) < 1e-3,
+      "Blender frame %d is video frame %d (%.4g against %.4g)" % (brightest + 1, brightest, blender_value,
+                                                                  values[brightest]))
