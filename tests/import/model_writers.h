@@ -195,4 +195,13 @@ inline void write_gltf(const std::string& path, const ModelMesh& m, const std::v
     o.write(reinterpret_cast<const char*>(bin.data()), static_cast<std::streamsize>(bin.size()));
 }
 
+// The scene shape that imports a model file (its own materials: material -1).
+inline ShapeDesc model_shape(const std::string& file) {
+    ShapeDesc sh;
+    sh.type = ShapeType::Mesh;
+    sh.file = file;
+    sh.material = -1;
+    return sh;
+}
+
 }  // namespace sl::test

@@ -23,11 +23,7 @@ SceneDesc floor_with_panel(const std::string& obj) {
     s.render.passes = 4;
     s.render.photons_per_pass = 5000;
     s.time = {0, 12, 4, 24};
-    ShapeDesc sh;
-    sh.type = ShapeType::Mesh;
-    sh.file = obj;
-    sh.material = -1;
-    s.shapes.push_back(sh);
+    s.shapes.push_back(model_shape(obj));
     return s;
 }
 

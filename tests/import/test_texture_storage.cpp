@@ -114,11 +114,7 @@ std::string textured_obj(TempDir& dir, const std::string& image) {
 SceneDesc scene_of(const std::string& obj) {
     SceneDesc s;
     s.source = "scene.json";
-    ShapeDesc sh;
-    sh.type = ShapeType::Mesh;
-    sh.file = obj;
-    sh.material = -1;
-    s.shapes.push_back(sh);
+    s.shapes.push_back(model_shape(obj));
     return s;
 }
 
