@@ -11,11 +11,10 @@
 #include <string_view>
 #include <unordered_map>
 
-#include <xxhash.h>
-
 #include "config/limits.h"
 #include "config/input_file.h"
 #include "foundation/errors.h"
+#include "foundation/xxh64.h"
 #include "core/import/imported_file.h"
 
 namespace sl {
@@ -294,7 +293,7 @@ struct Corner {
     bool operator==(const Corner& o) const { return v == o.v && t == o.t && n == o.n; }
 };
 struct CornerHash {
-    size_t operator()(const Corner& k) const { return static_cast<size_t>(XXH3_64bits(&k, sizeof k)); }
+    size_t operator()(const Corner& k) const { return static_cast<size_t>(xxh64_of(&k, sizeof k)); }
 };
 
 // The faces seen so far, by their corners (whatever corner comes first) and material: a face
@@ -311,7 +310,7 @@ public:
     // True when triangle t repeats one inserted before; else inserts it.
     bool repeats(uint32_t t) {
         const Key k = key(t);
-        size_t i = static_cast<size_t>(XXH3_64bits(&k, sizeof k)) & (slots_.size() - 1);
+        size_t i = static_cast<size_t>(xxh64_of(&k, sizeof k)) & (slots_.size() - 1);
         while (slots_[i] != kEmpty) {
             if (key(slots_[i]) == k) return true;
             i = (i + 1) & (slots_.size() - 1);
