@@ -16,6 +16,7 @@
 namespace sl {
 
 struct MeshData;      // core/import/mesh_data.h: triangles loaded from a mesh file
+struct InstancedMeshes;  // core/import/mesh_instances.h: meshes placed more than once
 struct TextureImage;  // core/texture.h: decoded texels, linear RGB
 
 struct CameraDesc {
@@ -92,6 +93,10 @@ struct ShapeDesc {
     // mesh, gltf: the file's triangles in scene space, filled by resolve_imports
     // (core/import/resolve_imports.h); shared, so that copying a SceneDesc stays cheap.
     std::shared_ptr<const MeshData> mesh;
+    // mesh, gltf: what the file places more than once (a glTF mesh under several nodes, or a
+    // file several entries name), held once in its own space and placed by transforms; null
+    // when everything is in `mesh` (filled by resolve_imports, like `mesh`).
+    std::shared_ptr<const InstancedMeshes> instances;
     // gltf: the units of its lights' intensities; empty: the command line's
     // --gltf-light-units, else photometric (core/import/resolve_imports.cpp)
     std::optional<LightUnits> light_units;

@@ -31,7 +31,7 @@ template <class F> void visit_fields(const ShapeDesc& s, F&& f) {
     f("type", s.type); f("material", s.material); f("corner", s.corner); f("edge1", s.edge1);
     f("edge2", s.edge2); f("min", s.min); f("max", s.max); f("center", s.center); f("radius", s.radius);
     f("file", s.file); f("translate", s.translate); f("scale", s.scale); f("rotate_deg", s.rotate_deg);
-    f("mesh", s.mesh); f("light_units", s.light_units); f("first_light", s.first_light);
+    f("mesh", s.mesh); f("instances", s.instances); f("light_units", s.light_units); f("first_light", s.first_light);
     f("light_count", s.light_count);
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/import/mesh_data.h"
+#include "core/import/mesh_instances.h"
 #include "core/sampling.h"
 #include "core/texture.h"
 
@@ -11,17 +12,26 @@ namespace sl {
 
 EmissiveTriangles::EmissiveTriangles(const SceneDesc& scene) : scene_(&scene) {
     std::vector<double> weight;
-    for (const ShapeDesc& s : scene.shapes) {
-        if (!s.mesh) continue;
-        const MeshData& m = *s.mesh;
+    // A mesh placed by instances: its emissive triangles, and only those, in scene space, one
+    // per copy (a mirroring copy keeps its front: core/import/mesh_instances.h).
+    auto add = [&](const MeshData& m, const Affine* placed) {
         for (size_t t = 0; t < m.triangle_count(); ++t) {
             const MaterialDesc& mat = scene.materials[static_cast<size_t>(m.tri_material[t])];
             if (!mat.emits()) continue;
-            const uint32_t* idx = &m.indices[3 * t];
+            uint32_t idx[3];
+            Vec3 v[3];
+            if (placed) {
+                placed_triangle(m, t, *placed, v, idx);
+            } else {
+                for (int k = 0; k < 3; ++k) {
+                    idx[k] = m.indices[3 * t + k];
+                    v[k] = m.positions[idx[k]];
+                }
+            }
             Triangle tri;
-            tri.v0 = m.positions[idx[0]];
-            tri.e1 = m.positions[idx[1]] - tri.v0;
-            tri.e2 = m.positions[idx[2]] - tri.v0;
+            tri.v0 = v[0];
+            tri.e1 = v[1] - tri.v0;
+            tri.e2 = v[2] - tri.v0;
             Vec3 c = cross(tri.e1, tri.e2);
             float len = length(c);
             if (!(len > 0) || !std::isfinite(len)) continue;
@@ -42,6 +52,12 @@ EmissiveTriangles::EmissiveTriangles(const SceneDesc& scene) : scene_(&scene) {
             weight.push_back(average(p));
             tris_.push_back(tri);
         }
+    };
+    for (const ShapeDesc& s : scene.shapes) {
+        if (s.mesh) add(*s.mesh, nullptr);
+        if (s.instances)
+            for (const InstancedMesh& im : s.instances->meshes)
+                for (const Affine& a : im.placements) add(*im.mesh, &a);
     }
     double total = 0;
     for (double w : weight) total += w;

@@ -30,6 +30,7 @@ SceneGeometry::SceneGeometry(const SceneDesc& desc) {
         build(desc);
     } catch (...) {  // the destructor does not run for a half-built object: release here
         if (scene_) rtcReleaseScene(scene_);
+        for (auto& p : prototypes_) rtcReleaseScene(p.second.scene);
         rtcReleaseDevice(device_);
         throw;
     }
@@ -44,7 +45,10 @@ void SceneGeometry::build(const SceneDesc& desc) {
         if (s.type == ShapeType::Sphere) {
             add_sphere(s.center, s.radius, s.material);
         } else if (s.mesh) {  // imported (core/import/resolve_imports.h): already in scene space
-            add_triangles(s.mesh->positions, s.mesh->indices, -1, -1, s.mesh);
+            // (Empty when all of it is placed by instances: Embree takes no empty buffer.)
+            if (!s.mesh->indices.empty()) add_triangles(s.mesh->positions, s.mesh->indices, -1, -1, s.mesh);
+            if (s.instances)
+                for (const InstancedMesh& im : s.instances->meshes) add_instances(im);
         } else {
             TriangleSoup soup = triangulate_shape(s);
             add_triangles(soup.vertices, soup.indices, s.material, -1);
@@ -65,6 +69,7 @@ void SceneGeometry::build(const SceneDesc& desc) {
 
 SceneGeometry::~SceneGeometry() {
     if (scene_) rtcReleaseScene(scene_);
+    for (auto& p : prototypes_) rtcReleaseScene(p.second.scene);
     if (device_) rtcReleaseDevice(device_);
 }
 
@@ -86,7 +91,7 @@ void SceneGeometry::add_triangles(const std::vector<Vec3>& v, const std::vector<
     triangles_ += idx.size() / 3;
 }
 
-void SceneGeometry::attach(RTCGeometry g, int material, int light, std::shared_ptr<const MeshData> mesh,
+unsigned SceneGeometry::attach(RTCGeometry g, int material, int light, std::shared_ptr<const MeshData> mesh,
                            const float* vertices, const uint32_t* indices) {
     rtcCommitGeometry(g);
     unsigned id = rtcAttachGeometry(scene_, g);
@@ -97,12 +102,64 @@ void SceneGeometry::attach(RTCGeometry g, int material, int light, std::shared_p
         geom_mesh_.resize(id + 1);
         geom_vertices_.resize(id + 1, nullptr);
         geom_indices_.resize(id + 1, nullptr);
+        geom_placed_.resize(id + 1, nullptr);
     }
     geom_vertices_[id] = vertices;
     geom_indices_[id] = indices;
     geom_material_[id] = material;
     geom_light_[id] = light;
     geom_mesh_[id] = std::move(mesh);
+    return id;
+}
+
+RTCScene SceneGeometry::prototype(const MeshData& m) {
+    for (auto& p : prototypes_)
+        if (p.first == &m) return p.second.scene;
+    RTCScene proto = rtcNewScene(device_);
+    rtcSetSceneFlags(proto, RTC_SCENE_FLAG_ROBUST);
+    rtcSetSceneBuildQuality(proto, RTC_BUILD_QUALITY_HIGH);
+    prototypes_.push_back({&m, {proto, nullptr, nullptr}});
+    RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                           3 * sizeof(float), m.positions.size()));
+    auto* ib = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                              3 * sizeof(uint32_t), m.triangle_count()));
+    if (!vb || !ib) {
+        rtcReleaseGeometry(g);
+        throw RuntimeFailure("Embree could not allocate a mesh buffer");
+    }
+    for (size_t i = 0; i < m.positions.size(); ++i) {
+        vb[3 * i] = m.positions[i].x; vb[3 * i + 1] = m.positions[i].y; vb[3 * i + 2] = m.positions[i].z;
+    }
+    std::memcpy(ib, m.indices.data(), m.indices.size() * sizeof(uint32_t));
+    rtcCommitGeometry(g);
+    rtcAttachGeometryByID(proto, g, 0);  // the prototype's only geometry: geomID 0 in every hit
+    rtcReleaseGeometry(g);
+    rtcCommitScene(proto);
+    prototypes_.back().second.vertices = vb;
+    prototypes_.back().second.indices = ib;
+    return proto;
+}
+
+void SceneGeometry::add_instances(const InstancedMesh& im) {
+    const MeshData& m = *im.mesh;
+    RTCScene proto = prototype(m);
+    const Prototype* pr = nullptr;
+    for (auto& p : prototypes_)
+        if (p.first == &m) pr = &p.second;
+    for (const Affine& a : im.placements) {
+        RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
+        rtcSetGeometryInstancedScene(g, proto);
+        rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, a.m);
+        placed_.push_back(std::make_unique<InstancePlacement>(InstancePlacement{a, NormalMatrix(a)}));
+        geom_placed_[attach(g, -1, -1, im.mesh, pr->vertices, pr->indices)] = placed_.back().get();
+        for (Vec3 p : m.positions) {  // the placed vertices' box, as for a mesh in scene space
+            const Vec3 w = a.point(p);
+            bmin_ = vmin(bmin_, w);
+            bmax_ = vmax(bmax_, w);
+        }
+        triangles_ += m.triangle_count();
+    }
 }
 
 void SceneGeometry::add_sphere(Vec3 c, float r, int material) {
@@ -132,22 +189,28 @@ bool SceneGeometry::intersect(Vec3 o, Vec3 d, float tnear, float tfar, SurfaceHi
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(scene_, &ctx, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+    // Inside an instance, Embree reports the instance (its top-level ID) in instID[0] and Ng in
+    // the prototype's space: the normal matrix brings it into the scene's, front included.
+    const unsigned id = rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID ? rh.hit.instID[0] : rh.hit.geomID;
+    const InstancePlacement* placed = geom_placed_[id];
     hit.t = rh.ray.tfar;
     hit.position = o + d * hit.t;
     Vec3 n{rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z};
+    if (placed) n = placed->normals(n);
     float len = length(n);
     hit.normal = len > 0 ? n / len : Vec3(0, 0, 1);
-    hit.material = geom_material_[rh.hit.geomID];
-    hit.light = geom_light_[rh.hit.geomID];
+    hit.material = geom_material_[id];
+    hit.light = geom_light_[id];
     hit.shading_normal = hit.normal;
     hit.front = hit.normal;  // Embree's Ng is (v1 - v0) x (v2 - v0): the counter-clockwise side
-    if (const MeshData* m = geom_mesh_[rh.hit.geomID].get()) {
+    if (const MeshData* m = geom_mesh_[id].get()) {
         const size_t prim = rh.hit.primID;
         hit.material = m->tri_material[prim];
         const uint32_t* tri = &m->indices[3 * prim];
         const float bu = rh.hit.u, bv = rh.hit.v, bw = 1 - bu - bv;
         if (!m->normals.empty()) {
             Vec3 ns = m->normals[tri[0]] * bw + m->normals[tri[1]] * bu + m->normals[tri[2]] * bv;
+            if (placed) ns = placed->normals(ns);
             float l = length(ns);
             if (l > 0 && std::isfinite(l)) {
                 ns = ns / l;

@@ -10,6 +10,7 @@
 
 #include "config/scene_desc.h"
 #include "core/import/mesh_data.h"
+#include "core/import/mesh_instances.h"
 
 namespace sl {
 
@@ -25,6 +26,12 @@ struct SurfaceHit {
     float tex_u = 0, tex_v = 0;  // texture coordinates, when the mesh has them
     int material = -1;  // index into SceneDesc::materials; -1 for a light's surface
     int light = -1;     // index into SceneDesc::lights when the surface is a quad light
+};
+
+// An instance's transform into the scene, and its normals' (SceneGeometry's hits and point queries).
+struct InstancePlacement {
+    Affine to_scene;
+    NormalMatrix normals;
 };
 
 class SceneGeometry {
@@ -56,8 +63,11 @@ private:
     void add_triangles(const std::vector<Vec3>& v, const std::vector<uint32_t>& idx, int material, int light,
                        std::shared_ptr<const MeshData> mesh = nullptr);
     void add_sphere(Vec3 center, float radius, int material);
+    // A mesh placed by instances: built once in a scene of its own, then one instance per copy.
+    void add_instances(const InstancedMesh& im);
+    RTCScene prototype(const MeshData& m);
     // Commits g, attaches it to the scene and records what its hits mean (by its Embree ID).
-    void attach(RTCGeometry g, int material, int light, std::shared_ptr<const MeshData> mesh,
+    unsigned attach(RTCGeometry g, int material, int light, std::shared_ptr<const MeshData> mesh,
                 const float* vertices = nullptr, const uint32_t* indices = nullptr);
 
     RTCDevice device_ = nullptr;
@@ -69,6 +79,16 @@ private:
     std::vector<const float*> geom_vertices_;
     std::vector<const uint32_t*> geom_indices_;
     std::vector<const float*> spheres_;  // each sphere's centre and radius (owned by Embree)
+    // Instances: by the top-level Embree geometry ID, the placement (null for other geometry);
+    // hits inside one report the instance's ID in instID[0] and the prototype's in geomID.
+    std::vector<const InstancePlacement*> geom_placed_;
+    std::vector<std::unique_ptr<InstancePlacement>> placed_;
+    struct Prototype {
+        RTCScene scene;
+        const float* vertices;
+        const uint32_t* indices;
+    };
+    std::vector<std::pair<const MeshData*, Prototype>> prototypes_;
     uint64_t id_;
     Vec3 bmin_{1e30f}, bmax_{-1e30f};
     size_t triangles_ = 0;

@@ -13,6 +13,7 @@ namespace {
 struct RiseQuery {
     const std::vector<const float*>* vertices;
     const std::vector<const uint32_t*>* indices;
+    const std::vector<const InstancePlacement*>* placed;  // by top-level ID: an instance's transform
     Vec3 c, p, n;
     float height;
 };
@@ -53,9 +54,18 @@ float distance2_to_triangle(Vec3 c, Vec3 a, Vec3 b, Vec3 t) {
 bool rise_callback(RTCPointQueryFunctionArguments* args) {
     auto* q = static_cast<RiseQuery*>(args->userPtr);
     float d2;
-    if (const float* v = (*q->vertices)[args->geomID]) {
-        const uint32_t* tri = (*q->indices)[args->geomID] + 3 * static_cast<size_t>(args->primID);
-        const Vec3 a = vertex(v, tri[0]), b = vertex(v, tri[1]), t = vertex(v, tri[2]);
+    // Inside an instance: its top-level ID, and its triangle brought into the scene's space
+    // (the query is the scene's: distances and heights are measured there, whatever the scale).
+    const bool inside = args->context->instStackSize > 0;
+    const unsigned id = inside ? args->context->instID[0] : args->geomID;
+    if (const float* v = (*q->vertices)[id]) {
+        const uint32_t* tri = (*q->indices)[id] + 3 * static_cast<size_t>(args->primID);
+        Vec3 a = vertex(v, tri[0]), b = vertex(v, tri[1]), t = vertex(v, tri[2]);
+        if (const InstancePlacement* pl = inside ? (*q->placed)[id] : nullptr) {
+            a = pl->to_scene.point(a);
+            b = pl->to_scene.point(b);
+            t = pl->to_scene.point(t);
+        }
         // The triangle lies in the hull of its corners: none above the height, no part above it.
         const float h = std::max(std::max(dot(a - q->p, q->n), dot(b - q->p, q->n)), dot(t - q->p, q->n));
         if (!(h > q->height)) return false;
@@ -72,7 +82,7 @@ bool rise_callback(RTCPointQueryFunctionArguments* args) {
 }  // namespace
 
 float SceneGeometry::clear_radius(Vec3 c, float radius, Vec3 p, Vec3 n, float height) const {
-    RiseQuery q{&geom_vertices_, &geom_indices_, c, p, n, height};
+    RiseQuery q{&geom_vertices_, &geom_indices_, &geom_placed_, c, p, n, height};
     RTCPointQuery query;
     query.x = c.x;
     query.y = c.y;

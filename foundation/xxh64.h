@@ -11,6 +11,9 @@
 
 namespace sl {
 
+// XXH64 (seed 0) of a few bytes at once: a hash table's key.
+inline uint64_t xxh64_of(const void* data, size_t n) { return XXH64(data, n, 0); }
+
 class Xxh64 {
 public:
     Xxh64() : state_(XXH64_createState()) {

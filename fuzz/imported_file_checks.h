@@ -8,8 +8,7 @@
 
 namespace sl::fuzz {
 
-inline void check_imported(const ImportedFile& f) {
-    const MeshData& m = f.mesh;
+inline void check_mesh(const ImportedFile& f, const MeshData& m) {
     if (m.indices.size() % 3 != 0) __builtin_trap();
     for (uint32_t i : m.indices)
         if (i >= m.positions.size()) __builtin_trap();
@@ -20,6 +19,17 @@ inline void check_imported(const ImportedFile& f) {
         if (t < 0 || static_cast<size_t>(t) >= f.materials.size()) __builtin_trap();
     for (const Vec3& p : m.positions)
         if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) __builtin_trap();
+}
+
+// The meshes placed once and those placed by instances (with finite placements).
+inline void check_imported(const ImportedFile& f) {
+    check_mesh(f, f.mesh);
+    for (const ImportedInstances& in : f.instanced) {
+        check_mesh(f, in.mesh);
+        if (in.placements.size() < 2) __builtin_trap();
+        for (const Affine& a : in.placements)
+            if (!a.finite()) __builtin_trap();
+    }
 }
 
 }  // namespace sl::fuzz

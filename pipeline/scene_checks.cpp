@@ -6,6 +6,7 @@
 
 #include "config/text_util.h"
 #include "core/import/mesh_data.h"
+#include "core/import/mesh_instances.h"
 #include "core/import/model_scene.h"
 #include "foundation/constants.h"
 #include "foundation/message_lines.h"
@@ -149,18 +150,25 @@ double light_watts(const LightDesc& l, Vec3 size) {
 }
 
 double emissive_watts(const SceneDesc& s, const ShapeDesc& shape) {
-    if (!shape.mesh) return 0;
-    const MeshData& m = *shape.mesh;
-    double w = 0;
-    for (size_t t = 0; t < m.tri_material.size(); ++t) {
-        const MaterialDesc& mat = s.materials[static_cast<size_t>(m.tri_material[t])];
-        if (!mat.emits()) continue;
-        const Vec3 a = m.positions[m.indices[3 * t]], b = m.positions[m.indices[3 * t + 1]],
-                   c = m.positions[m.indices[3 * t + 2]];
-        const double area = 0.5 * length(cross(b - a, c - a));
-        w += (double(mat.emission.x) + mat.emission.y + mat.emission.z) / 3 * kPiDouble * area *
-             (mat.double_sided ? 2 : 1);
-    }
+    // Each placed copy of a mesh held once emits as a copy in the scene would.
+    auto watts = [&](const MeshData& m, const Affine* placed) {
+        double w = 0;
+        for (size_t t = 0; t < m.tri_material.size(); ++t) {
+            const MaterialDesc& mat = s.materials[static_cast<size_t>(m.tri_material[t])];
+            if (!mat.emits()) continue;
+            Vec3 a = m.positions[m.indices[3 * t]], b = m.positions[m.indices[3 * t + 1]],
+                 c = m.positions[m.indices[3 * t + 2]];
+            if (placed) { a = placed->point(a); b = placed->point(b); c = placed->point(c); }
+            const double area = 0.5 * length(cross(b - a, c - a));
+            w += (double(mat.emission.x) + mat.emission.y + mat.emission.z) / 3 * kPiDouble * area *
+                 (mat.double_sided ? 2 : 1);
+        }
+        return w;
+    };
+    double w = shape.mesh ? watts(*shape.mesh, nullptr) : 0;
+    if (shape.instances)
+        for (const InstancedMesh& im : shape.instances->meshes)
+            for (const Affine& a : im.placements) w += watts(*im.mesh, &a);
     return w;
 }
 

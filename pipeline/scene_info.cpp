@@ -95,6 +95,9 @@ void print_scene_info(std::ostream& out, std::ostream& err, const SceneDesc& s, 
         << "render:     " << s.render.passes << " passes x " << s.render.photons_per_pass << " photons, max_depth "
         << s.render.max_depth << ", alpha " << s.render.alpha << "\n"
         << "imports:    " << imported_triangles(s) << " imported triangles (" << emissive_triangles(s) << " emissive; "
+        << (imported_instances(s) > 0 ? std::to_string(held_triangles(s)) + " held once, " +
+                                            std::to_string(imported_instances(s)) + " placed copies; "
+                                      : std::string())
         << format_bytes(imported_mesh_bytes(s)) << " of vertex data, about " << format_bytes(imported_bvh_bytes(s))
         << " more in the BVH); " << s.textures.size() << " texture" << (s.textures.size() == 1 ? "" : "s") << ", "
         << format_bytes(texture_bytes(s)) << "\n";
@@ -189,6 +192,7 @@ nlohmann::json scene_info_json(const SceneDesc& s, const RunOptions& options) {
     j["render"] = {{"passes", s.render.passes}, {"photons_per_pass", s.render.photons_per_pass},
                    {"max_depth", s.render.max_depth}, {"alpha", s.render.alpha}, {"seed", s.render.seed}};
     j["imports"] = {{"triangles", imported_triangles(s)}, {"emissive_triangles", emissive_triangles(s)},
+                    {"held_triangles", held_triangles(s)}, {"instances", imported_instances(s)},
                     {"mesh_bytes", imported_mesh_bytes(s)}, {"bvh_bytes", imported_bvh_bytes(s)},
                     {"textures", s.textures.size()}, {"texture_bytes", texture_bytes(s)}};
     std::vector<const ShapeDesc*> from(s.lights.size(), nullptr);

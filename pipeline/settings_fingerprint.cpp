@@ -24,7 +24,7 @@ constexpr uint64_t kMaxMeshBytes = uint64_t(1) << 30;  // as the mesh loader all
 // is in the fingerprint (config/scene_fields.h names them all).
 constexpr std::string_view kNotPixels[] = {
     "source",        "input_files",   "imports_resolved", "materials[].name", "shapes[].file",
-    "shapes[].mesh", "textures[].file", "textures[].image", "time.fps", "shapes[].light_units",
+    "shapes[].mesh", "shapes[].instances", "textures[].file", "textures[].image", "time.fps", "shapes[].light_units",
     "shapes[].first_light", "shapes[].light_count",
 };
 

@@ -4,6 +4,7 @@
 // encoded: they are decoded later, and only when a material that is drawn uses them.
 #include <tiny_gltf.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstring>
@@ -194,15 +195,25 @@ public:
             roots = model_.scenes[static_cast<size_t>(scene)].nodes;
         }
         check_expansion(roots);
+        mesh_uses_.assign(model_.meshes.size(), 0);
+        for (int n : roots) count_uses(n);
+        prototype_.assign(model_.meshes.size(), -1);
         for (int n : roots) visit(n, identity(), 0);
-        if (out_.mesh.indices.empty() && out_.lights.empty())
+        // A mesh whose every triangle is degenerate places nothing.
+        out_.instanced.erase(std::remove_if(out_.instanced.begin(), out_.instanced.end(),
+                                            [](const ImportedInstances& i) { return i.mesh.indices.empty(); }),
+                             out_.instanced.end());
+        if (out_.mesh.indices.empty() && out_.instanced.empty() && out_.lights.empty())
             fail("the default scene has no triangles and no lights");
-        MeshData& mesh = out_.mesh;
-        mesh.positions.shrink_to_fit();
-        mesh.normals.shrink_to_fit();
-        mesh.uvs.shrink_to_fit();
-        mesh.indices.shrink_to_fit();
-        mesh.tri_material.shrink_to_fit();
+        auto shrink = [](MeshData& mesh) {
+            mesh.positions.shrink_to_fit();
+            mesh.normals.shrink_to_fit();
+            mesh.uvs.shrink_to_fit();
+            mesh.indices.shrink_to_fit();
+            mesh.tri_material.shrink_to_fit();
+        };
+        shrink(out_.mesh);
+        for (ImportedInstances& i : out_.instanced) shrink(i.mesh);
         for (size_t i = 0; i < out_.materials.size(); ++i)
             if (material_used_[i])
                 for (const std::string& w : material_warnings_[i]) out_.warnings.push_back(w);
@@ -499,6 +510,13 @@ private:
         over(e.vertices, limits::kMaxImportedVertices, "vertices");
     }
 
+    // How many times each mesh is placed (the graph is bounded and acyclic: check_expansion).
+    void count_uses(int node) {
+        const tinygltf::Node& n = model_.nodes[static_cast<size_t>(node)];
+        if (n.mesh >= 0 && static_cast<size_t>(n.mesh) < mesh_uses_.size()) ++mesh_uses_[static_cast<size_t>(n.mesh)];
+        for (int c : n.children) count_uses(c);
+    }
+
     void visit(int node, const Mat4& parent, int depth) {
         if (node < 0 || static_cast<size_t>(node) >= model_.nodes.size()) fail("node " + std::to_string(node) + " does not exist");
         if (depth > kMaxNodeDepth) fail("the node hierarchy is deeper than " + std::to_string(kMaxNodeDepth) + " levels");
@@ -507,7 +525,8 @@ private:
         const Mat4 m = mul(parent, local_matrix(n));
         if (n.mesh >= 0) {
             if (static_cast<size_t>(n.mesh) >= model_.meshes.size()) fail("node " + std::to_string(node) + ": mesh " + std::to_string(n.mesh) + " does not exist");
-            add_mesh(model_.meshes[static_cast<size_t>(n.mesh)], n.mesh, m);
+            if (mesh_uses_[static_cast<size_t>(n.mesh)] > 1) place_instance(n.mesh, m, node);
+            else add_mesh(model_.meshes[static_cast<size_t>(n.mesh)], n.mesh, m, out_.mesh);
         }
         if (n.camera >= 0 && !out_.camera) camera(n.camera, m);
         auto lit = n.extensions.find("KHR_lights_punctual");
@@ -537,7 +556,32 @@ private:
         }
     }
 
-    void add_mesh(const tinygltf::Mesh& mesh, int mesh_index, const Mat4& m) {
+    // A mesh placed more than once: read once in its own space (nested nodes' transforms are
+    // multiplied into one placement: instances are one level deep), placed by `m`.
+    void place_instance(int mesh_index, const Mat4& m, int node) {
+        int& proto = prototype_[static_cast<size_t>(mesh_index)];
+        if (proto < 0) {
+            ImportedInstances fresh;
+            add_mesh(model_.meshes[static_cast<size_t>(mesh_index)], mesh_index, identity(), fresh.mesh);
+            proto = static_cast<int>(out_.instanced.size());
+            out_.instanced.push_back(std::move(fresh));
+        }
+        ImportedInstances& in = out_.instanced[static_cast<size_t>(proto)];
+        Affine a;
+        for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 4; ++c) a.m[4 * r + c] = static_cast<float>(m[c * 4 + r]);
+        // As a placed vertex: a huge vertex times a node's scale can overflow (the box's
+        // corners hold the largest coordinates any vertex reaches).
+        Vec3 lo(1e30f), hi(-1e30f);
+        for (Vec3 p : in.mesh.positions) { lo = vmin(lo, p); hi = vmax(hi, p); }
+        for (int k = 0; k < 8 && !in.mesh.positions.empty(); ++k)
+            if (!is_finite(a.point({k & 1 ? hi.x : lo.x, k & 2 ? hi.y : lo.y, k & 4 ? hi.z : lo.z})))
+                fail("node " + std::to_string(node) + ": mesh " + std::to_string(mesh_index) +
+                     ": a POSITION is not finite once placed by its nodes");
+        in.placements.push_back(a);
+    }
+
+    void add_mesh(const tinygltf::Mesh& mesh, int mesh_index, const Mat4& m, MeshData& out) {
         const Mat4 nm = normal_matrix(m);
         const bool flip = det3(m) < 0;
         std::map<std::tuple<int, int, int>, uint32_t> placed;
@@ -582,16 +626,15 @@ private:
             // Primitives of one mesh often share their vertex accessors: place those once.
             const auto key = std::make_tuple(pos_it->second, nv ? p.attributes.at("NORMAL") : -1,
                                              tv ? p.attributes.at("TEXCOORD_0") : -1);
-            auto [shared, fresh] = placed.try_emplace(key, static_cast<uint32_t>(out_.mesh.positions.size()));
+            auto [shared, fresh] = placed.try_emplace(key, static_cast<uint32_t>(out.positions.size()));
             const uint32_t base = shared->second;
-            if (fresh) add_vertices(pv, nv, tv, m, nm, where);
-            add_triangles(p, pv.count, base, flip, material, where);
+            if (fresh) add_vertices(pv, nv, tv, m, nm, where, out);
+            add_triangles(p, pv.count, base, flip, material, where, out);
         }
     }
 
     void add_vertices(const View& pv, const std::optional<View>& nv, const std::optional<View>& tv, const Mat4& m,
-                      const Mat4& nm, const std::string& where) {
-        MeshData& out = out_.mesh;
+                      const Mat4& nm, const std::string& where, MeshData& out) {
         {
             const uint32_t base = static_cast<uint32_t>(out.positions.size());
             const bool any_normals_before = !out.normals.empty() || base == 0;
@@ -630,8 +673,7 @@ private:
     }
 
     void add_triangles(const tinygltf::Primitive& p, size_t vertex_count, uint32_t base, bool flip, int material,
-                       const std::string& where) {
-        MeshData& out = out_.mesh;
+                       const std::string& where, MeshData& out) {
         const View pv{nullptr, 0, vertex_count, 0, 0, false};
         {
             // Indices (or 0..n-1), as a triangle list.
@@ -740,6 +782,8 @@ private:
     std::vector<bool> material_used_;
     std::vector<std::vector<std::string>> material_warnings_;
     int default_material_ = -1;
+    std::vector<uint64_t> mesh_uses_;  // per mesh: its placements in the default scene
+    std::vector<int> prototype_;       // per mesh placed more than once: its out_.instanced entry
 };
 
 }  // namespace

@@ -8,6 +8,7 @@
 
 #include "config/scene_desc.h"
 #include "core/import/mesh_data.h"
+#include "core/import/mesh_instances.h"
 
 namespace sl {
 
@@ -17,8 +18,15 @@ struct ImportedTexture {
     std::string format;                // file extension naming the encoding ("png", "jpg")
 };
 
+// A mesh the file places more than once, in its own space, with its placements in the file's.
+struct ImportedInstances {
+    MeshData mesh;  // tri_material: index into ImportedFile::materials
+    std::vector<Affine> placements;
+};
+
 struct ImportedFile {
-    MeshData mesh;  // tri_material: index into materials
+    MeshData mesh;  // tri_material: index into materials; what the file places once
+    std::vector<ImportedInstances> instanced;  // what it places more than once (glTF)
     std::vector<MaterialDesc> materials;  // albedo/emission_texture: index into textures
     std::vector<ImportedTexture> textures;
     std::vector<LightDesc> lights;

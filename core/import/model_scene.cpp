@@ -7,6 +7,7 @@
 #include "foundation/constants.h"
 #include "foundation/errors.h"
 #include "core/import/mesh_data.h"
+#include "core/import/mesh_instances.h"
 #include "core/import/resolve_imports.h"
 
 namespace sl {
@@ -38,9 +39,14 @@ SceneDesc scene_for_model(const std::string& path, std::optional<LightUnits> lig
     resolve_imports(scene, budget);
 
     Vec3 lo(1e30f), hi(-1e30f);
-    for (const ShapeDesc& sh : scene.shapes)
+    for (const ShapeDesc& sh : scene.shapes) {
         if (sh.mesh)
             for (Vec3 p : sh.mesh->positions) { lo = vmin(lo, p); hi = vmax(hi, p); }
+        if (sh.instances)
+            for (const InstancedMesh& im : sh.instances->meshes)
+                for (const Affine& a : im.placements)
+                    for (Vec3 p : im.mesh->positions) { lo = vmin(lo, a.point(p)); hi = vmax(hi, a.point(p)); }
+    }
     for (const LightDesc& l : scene.lights) { lo = vmin(lo, l.position); hi = vmax(hi, l.position); }
     if (lo.x > hi.x) lo = hi = Vec3(0);
     const Vec3 center = (lo + hi) * 0.5f;

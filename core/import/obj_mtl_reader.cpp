@@ -14,6 +14,7 @@
 #include "config/limits.h"
 #include "config/input_file.h"
 #include "foundation/errors.h"
+#include "foundation/xxh64.h"
 #include "core/import/imported_file.h"
 
 namespace sl {
@@ -285,14 +286,57 @@ void read_mtl(const std::string& path, ImportedFile& out, MtlResult& mtl) {
     }
 }
 
-struct CornerKey {
+// A face corner: indices into v, vt and vn (-1: none). Faces are read as corner IDs into the
+// table of distinct corners, so a file that repeats its corners costs its distinct ones.
+struct Corner {
     int64_t v, t, n;
-    bool operator==(const CornerKey& o) const { return v == o.v && t == o.t && n == o.n; }
+    bool operator==(const Corner& o) const { return v == o.v && t == o.t && n == o.n; }
 };
 struct CornerHash {
-    size_t operator()(const CornerKey& k) const {
-        return std::hash<int64_t>()(k.v * 73856093LL ^ k.t * 19349663LL ^ k.n * 83492791LL);
+    size_t operator()(const Corner& k) const { return static_cast<size_t>(xxh64_of(&k, sizeof k)); }
+};
+
+// The faces seen so far, by their corners (whatever corner comes first) and material: a face
+// written again is drawn once. Open addressing over triangle numbers (4 bytes a slot, at most
+// half full): a hash set of the triples would cost ten times that on a large mesh.
+class FaceSet {
+public:
+    FaceSet(const std::vector<uint32_t>& corners, const std::vector<int32_t>& material)
+        : corners_(corners), material_(material) {
+        size_t cap = 16;
+        while (cap < 2 * material.size()) cap *= 2;
+        slots_.assign(cap, kEmpty);
     }
+    // True when triangle t repeats one inserted before; else inserts it.
+    bool repeats(uint32_t t) {
+        const Key k = key(t);
+        size_t i = static_cast<size_t>(xxh64_of(&k, sizeof k)) & (slots_.size() - 1);
+        while (slots_[i] != kEmpty) {
+            if (key(slots_[i]) == k) return true;
+            i = (i + 1) & (slots_.size() - 1);
+        }
+        slots_[i] = t;
+        return false;
+    }
+
+private:
+    static constexpr uint32_t kEmpty = UINT32_MAX;
+    struct Key {
+        uint32_t c[3];
+        int32_t material;
+        bool operator==(const Key& o) const {
+            return c[0] == o.c[0] && c[1] == o.c[1] && c[2] == o.c[2] && material == o.material;
+        }
+    };
+    // Rotated so that the smallest corner comes first: the same face, the same front.
+    Key key(uint32_t t) const {
+        const uint32_t* c = &corners_[3 * static_cast<size_t>(t)];
+        const int r = c[0] <= c[1] && c[0] <= c[2] ? 0 : c[1] <= c[2] ? 1 : 2;
+        return {{c[r], c[(r + 1) % 3], c[(r + 2) % 3]}, material_[t]};
+    }
+    const std::vector<uint32_t>& corners_;
+    const std::vector<int32_t>& material_;
+    std::vector<uint32_t> slots_;
 };
 
 }  // namespace
@@ -308,13 +352,13 @@ ImportedFile read_obj_mtl(const std::string& path, bool read_materials) {
     std::vector<float> vt;
     MtlResult mtl;
     int current = -1;  // material of the faces that follow (-1: the default)
-    std::unordered_map<CornerKey, uint32_t, CornerHash> corners;
     bool any_normals = false, any_uvs = false;
     std::set<std::string> warned;
     // Faces first gather corners; output vertices are made per distinct (v, vt, vn).
-    struct Corner { int64_t v, t, n; };
-    std::vector<Corner> face;
-    std::vector<Corner> all_corners;  // 3 per triangle
+    std::unordered_map<Corner, uint32_t, CornerHash> corner_id;
+    std::vector<Corner> corners;          // distinct, in the order they first appear
+    std::vector<uint32_t> face;
+    std::vector<uint32_t> tri_corners;    // 3 per triangle: into `corners`
     std::vector<int32_t> tri_material;
     size_t pos = 0;
     while (pos < text.size()) {
@@ -353,10 +397,12 @@ ImportedFile read_obj_mtl(const std::string& path, bool read_materials) {
                 Corner cc{lr.index(a, v.size(), "vertex"), -1, -1};
                 if (!b.empty()) cc.t = lr.index(b, vt.size() / 2, "texture coordinate");
                 if (!n.empty()) cc.n = lr.index(n, vn.size(), "normal");
-                face.push_back(cc);
+                auto [it, fresh] = corner_id.try_emplace(cc, static_cast<uint32_t>(corners.size()));
+                if (fresh) corners.push_back(cc);
+                face.push_back(it->second);
             }
             for (size_t i = 1; i + 1 < face.size(); ++i) {  // a fan over the polygon
-                all_corners.insert(all_corners.end(), {face[0], face[i], face[i + 1]});
+                tri_corners.insert(tri_corners.end(), {face[0], face[i], face[i + 1]});
                 tri_material.push_back(current);
             }
         } else if (k == "usemtl") {
@@ -411,8 +457,9 @@ ImportedFile read_obj_mtl(const std::string& path, bool read_materials) {
                                    std::string(k.substr(0, 40)) + "' is ignored");
         }
     }
-    if (all_corners.empty()) throw InputError(path + ": the mesh has no faces");
-    for (const Corner& c : all_corners) {
+    if (tri_corners.empty()) throw InputError(path + ": the mesh has no faces");
+    corner_id = {};  // (its memory, before the mesh is made)
+    for (const Corner& c : corners) {
         any_normals |= c.n >= 0;
         any_uvs |= c.t >= 0;
     }
@@ -420,20 +467,29 @@ ImportedFile read_obj_mtl(const std::string& path, bool read_materials) {
     out.materials = mtl.materials;
     int default_material = -1;
     MeshData& m = out.mesh;
-    m.positions.reserve(all_corners.size() / 2);
+    constexpr uint32_t kNoVertex = UINT32_MAX;
+    std::vector<uint32_t> vertex_of(corners.size(), kNoVertex);  // a corner's output vertex
+    FaceSet seen(tri_corners, tri_material);
+    size_t repeated = 0;
     for (size_t tri = 0; tri < tri_material.size(); ++tri) {
-        const Corner* c = &all_corners[3 * tri];
+        const uint32_t* id = &tri_corners[3 * tri];
+        const Corner c[3] = {corners[id[0]], corners[id[1]], corners[id[2]]};
         Vec3 a = v[static_cast<size_t>(c[0].v)], b = v[static_cast<size_t>(c[1].v)], d = v[static_cast<size_t>(c[2].v)];
         Vec3 fn = cross(b - a, d - a);
         float area2 = length(fn);
         if (!(area2 > 0) || !std::isfinite(area2)) continue;  // degenerate: no area, no light
+        if (seen.repeats(static_cast<uint32_t>(tri))) {  // the same face again: drawn once
+            ++repeated;
+            continue;
+        }
         bool flat = any_normals && (c[0].n < 0 || c[1].n < 0 || c[2].n < 0);
         uint32_t idx[3];
         for (int k = 0; k < 3; ++k) {
             // A corner of a face without normals gets its own vertex with the face's normal.
-            CornerKey key{c[k].v, c[k].t, flat ? -2 - static_cast<int64_t>(tri) : c[k].n};
-            auto [it, fresh] = corners.try_emplace(key, static_cast<uint32_t>(m.positions.size()));
+            const bool fresh = flat || vertex_of[id[k]] == kNoVertex;
             if (fresh) {
+                if (!flat) vertex_of[id[k]] = static_cast<uint32_t>(m.positions.size());
+                idx[k] = static_cast<uint32_t>(m.positions.size());
                 m.positions.push_back(v[static_cast<size_t>(c[k].v)]);
                 if (any_normals) {
                     Vec3 n = flat ? fn / area2 : vn[static_cast<size_t>(c[k].n)];
@@ -444,8 +500,9 @@ ImportedFile read_obj_mtl(const std::string& path, bool read_materials) {
                     m.uvs.push_back(c[k].t >= 0 ? vt[2 * static_cast<size_t>(c[k].t)] : 0.0f);
                     m.uvs.push_back(c[k].t >= 0 ? vt[2 * static_cast<size_t>(c[k].t) + 1] : 0.0f);
                 }
+            } else {
+                idx[k] = vertex_of[id[k]];
             }
-            idx[k] = it->second;
         }
         m.indices.insert(m.indices.end(), {idx[0], idx[1], idx[2]});
         int mat = tri_material[tri];
@@ -461,6 +518,9 @@ ImportedFile read_obj_mtl(const std::string& path, bool read_materials) {
         m.tri_material.push_back(mat);
     }
     if (m.indices.empty()) throw InputError(path + ": the mesh has no triangles with area");
+    if (repeated > 0)
+        out.warnings.push_back(path + ": " + std::to_string(repeated) +
+                               " faces repeat an earlier face (the same corners and material): each is drawn once");
     m.positions.shrink_to_fit();
     m.normals.shrink_to_fit();
     m.uvs.shrink_to_fit();

@@ -28,12 +28,17 @@ SceneDesc with_imports(const SceneDesc& scene);
 // The first camera of the first glTF file the scene imports, placed like its triangles.
 std::optional<CameraDesc> imported_camera(const SceneDesc& scene);
 
-// Geometry held by imported meshes and their textures (bytes), for `info` and the memory plan.
+// Geometry held by imported meshes and their textures (bytes), for `info` and the memory plan:
+// a mesh placed by instances counts once, plus its transforms.
 uint64_t imported_mesh_bytes(const SceneDesc& scene);
 uint64_t texture_bytes(const SceneDesc& scene);
 // Embree's own copy of the vertices and indices and its BVH (measured, see docs/scenes.md).
 uint64_t imported_bvh_bytes(const SceneDesc& scene);
+// Triangles as placed (a mesh placed N times counts N times), and as held (once).
 size_t imported_triangles(const SceneDesc& scene);
-size_t emissive_triangles(const SceneDesc& scene);
+size_t held_triangles(const SceneDesc& scene);
+size_t emissive_triangles(const SceneDesc& scene);  // as placed
+// Placements of meshes held once and placed by instances (core/import/mesh_instances.h).
+size_t imported_instances(const SceneDesc& scene);
 
 }  // namespace sl

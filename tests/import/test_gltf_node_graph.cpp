@@ -1,6 +1,6 @@
 // A glTF node graph is bounded by what it places, not by its depth: a graph whose paths double
 // at each level is refused at once with the count, a cycle is named, and a mesh reused by
-// several nodes is placed once per node.
+// several nodes is held once and placed once per node.
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -89,6 +89,7 @@ TEST(GltfNodeGraph, ACycleIsNamed) {
     EXPECT_NE(m.find("node 1 is its own ancestor (a cycle)"), std::string::npos) << m;
 }
 
+// Held once, in its own space, with the three placements (the nested one multiplied out).
 TEST(GltfNodeGraph, AMeshReusedByThreeNodesIsPlacedThreeTimes) {
     TempDir dir;
     const std::string file = graph_file(dir, [](json& j) {
@@ -99,10 +100,17 @@ TEST(GltfNodeGraph, AMeshReusedByThreeNodesIsPlacedThreeTimes) {
         j["scenes"] = json::array({{{"nodes", {2, 0}}}});  // node 0 twice: under 2 and as a root
     });
     const ImportedFile f = read_gltf(file, true);
-    ASSERT_EQ(f.mesh.triangle_count(), 6u);
-    float highest = -1;
-    for (Vec3 p : f.mesh.positions) highest = std::max(highest, p.y);
-    EXPECT_FLOAT_EQ(highest, 2.0f);
+    EXPECT_EQ(f.mesh.triangle_count(), 0u);
+    ASSERT_EQ(f.instanced.size(), 1u);
+    ASSERT_EQ(f.instanced[0].mesh.triangle_count(), 2u);
+    ASSERT_EQ(f.instanced[0].placements.size(), 3u);
+    const Vec3 origins[3] = {{5, 2, 0}, {5, 1, 0}, {0, 2, 0}};  // node 0 under 2, node 1 under 2, node 0
+    for (int k = 0; k < 3; ++k) {
+        const Vec3 o = f.instanced[0].placements[static_cast<size_t>(k)].point(Vec3(0));
+        EXPECT_FLOAT_EQ(o.x, origins[k].x);
+        EXPECT_FLOAT_EQ(o.y, origins[k].y);
+        EXPECT_FLOAT_EQ(o.z, origins[k].z);
+    }
 }
 
 }  // namespace
