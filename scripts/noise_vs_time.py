@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Per-pixel noise against time for renders of one scene at several pass counts (docs/medium.md).
 
-    scripts/noise_vs_time.py RUNS_DIR OUT.png
+    scripts/noise_vs_time.py RUNS_DIR OUT.png [TITLE]
 
 RUNS_DIR holds, for each version V (e.g. "before", "after"), scene S, pass count P and seeds 1
 and 2: V_S_P_s1.npy, V_S_P_s2.npy (`slowlight render S.json --passes P --seed N --cube ...`)
@@ -44,8 +44,8 @@ def read_time(path):
 
 
 def main():
-    if len(sys.argv) != 3:
-        sys.exit("usage: noise_vs_time.py RUNS_DIR OUT.png")
+    if len(sys.argv) not in (3, 4):
+        sys.exit("usage: noise_vs_time.py RUNS_DIR OUT.png [TITLE]")
     runs, out = sys.argv[1], sys.argv[2]
     points = {}  # (version, scene) -> [(passes, wall, cpu, noise)]
     for a in sorted(glob.glob(os.path.join(runs, "*_s1.npy"))):
@@ -77,6 +77,8 @@ def main():
         ax.set_ylabel("per-pixel noise, median over lit frames (%)")
         ax.grid(True, which="both", alpha=0.3)
     axes[0].legend(fontsize=7)
+    if len(sys.argv) == 4:
+        fig.suptitle(sys.argv[3], fontsize=10)
     fig.tight_layout()
     fig.savefig(out, dpi=110)
 
