@@ -68,7 +68,7 @@ struct PixelTracer {
         Rng rng(settings.seed, 1, static_cast<uint64_t>(pass), pixel);
         float fx = static_cast<float>(pixel % ctx.width), fy = static_cast<float>(pixel / ctx.width);
         float weight = 1;
-        if (!jitter(fx, fy, rng, weight)) return;
+        if (!jitter(pixel, fx, fy, rng, weight)) return;
         Vec3 o = ctx.camera.position(), d = ctx.camera.direction(fx, fy);
         Vec3 beta(weight);
         double leg_ns = 0;  // camera leg so far, in ns (light crosses glass at c/n)
@@ -146,20 +146,23 @@ struct PixelTracer {
         }
     }
 
-    // The ray's point in the pixel (x, y): uniform, except in the pixels within kLightImage pixels
-    // of a point light's image in the haze, where a ray passing at h from the light sees
-    // in-scattering ~ 1/h and uniform jitter has a variance that grows without bound
-    // (log(pixel / h)): there, half the rays are drawn with density ~ 1 / (distance to the
-    // light's image) in a disc of kLightImage pixels round it (a ray then passes at h in
-    // proportion), and every contribution is weighted by 1 / (the mixture's density). Rays
-    // drawn outside the pixel count as zero. False: nothing to trace.
+    // The ray's point in the pixel (x, y): uniform, except in the pixels within kStratified
+    // pixels of a point light's image in the haze, where a ray passing at h from the light sees
+    // in-scattering ~ 1/h, which dominates the image's sum. There the point is stratified over
+    // the passes (below), and within kLightImage pixels of the image, where uniform jitter has a
+    // variance that grows without bound (log(pixel / h)), every other pass draws it with density
+    // q ~ 1 / (distance to the light's image) in a disc of kLightImage pixels round it (a ray then
+    // passes at h in proportion) and the others uniformly; every contribution is weighted by
+    // 1 / (the mixture's density, 1/2 + q/2). Rays drawn outside the pixel count as zero.
+    // False: nothing to trace.
     static constexpr float kLightImage = 1.0f;
-    bool jitter(float& fx, float& fy, Rng& rng, float& weight) const {
+    static constexpr float kStratified = 3.0f;
+    bool jitter(size_t pixel, float& fx, float& fy, Rng& rng, float& weight) const {
         const float x0 = fx, y0 = fy;
         const std::array<float, 2>* near = nullptr;
         for (const std::array<float, 2>& c : ctx.light_images)
-            if (c[0] > x0 - kLightImage && c[0] < x0 + 1 + kLightImage && c[1] > y0 - kLightImage &&
-                c[1] < y0 + 1 + kLightImage) {
+            if (c[0] > x0 - kStratified && c[0] < x0 + 1 + kStratified && c[1] > y0 - kStratified &&
+                c[1] < y0 + 1 + kStratified) {
                 near = &c;
                 break;
             }
@@ -168,11 +171,15 @@ struct PixelTracer {
             fy = y0 + rng.uniform();
             return true;
         }
-        if (rng.uniform() < 0.5f) {
-            fx = x0 + rng.uniform();
-            fy = y0 + rng.uniform();
+        const bool disc = (*near)[0] > x0 - kLightImage && (*near)[0] < x0 + 1 + kLightImage &&
+                          (*near)[1] > y0 - kLightImage && (*near)[1] < y0 + 1 + kLightImage;
+        const StratumPoint u = pass_point(pixel, disc);
+        if (!u.toward_light) {
+            fx = x0 + u.a;
+            fy = y0 + u.b;
+            if (!disc) return true;
         } else {
-            const float r = kLightImage * rng.uniform(), phi = 2 * kPi * rng.uniform();
+            const float r = kLightImage * u.a, phi = 2 * kPi * u.b;
             fx = (*near)[0] + r * std::cos(phi);
             fy = (*near)[1] + r * std::sin(phi);
             if (!(fx >= x0 && fx < x0 + 1 && fy >= y0 && fy < y0 + 1)) return false;
@@ -182,6 +189,38 @@ struct PixelTracer {
         const float q = rc < kLightImage ? 1 / (2 * kPi * kLightImage * rc) : 0.0f;  // 1/r in the disc
         weight = 1 / (0.5f + 0.5f * q);
         return std::isfinite(weight) && weight > 0;
+    }
+
+    // The pass's point of a pixel round a light's image, stratified over the passes: the n-th
+    // point of Roberts' R2 sequence (n = pass, or pass / 2 when alternate passes take the
+    // uniform and the disc density), shifted modulo 1 by a rotation drawn for this pixel and
+    // seed (its own random stream, the same in every pass; the disc's points have their own, or
+    // the two halves would share their errors). For every pass the point is
+    // uniform (the rotation is) and the choice of density is 1/2 each (its parity is drawn),
+    // so each pass's estimate is unbiased and seeds are independent; over the passes the points
+    // fill the pixel (or disc) evenly instead of clumping, which is what the 1/h peak needs.
+    struct StratumPoint {
+        float a, b;
+        bool toward_light;
+    };
+    StratumPoint pass_point(size_t pixel, bool disc) const {
+        Rng rotation(ctx.render.seed, 11, 0, pixel);
+        const uint64_t parity = rotation.next_u32() & 1u;
+        uint64_t n = static_cast<uint64_t>(pass);
+        bool toward = false;
+        if (disc) {
+            toward = ((n + parity) & 1u) != 0;
+            n >>= 1;
+        }
+        if (toward) {  // the disc's points: their own rotation
+            rotation.uniform();
+            rotation.uniform();
+        }
+        const double ra = rotation.uniform(), rb = rotation.uniform();
+        constexpr double g = 1.32471795724474602596;  // the plastic number: R2's generator
+        const double a = ra + static_cast<double>(n) / g, b = rb + static_cast<double>(n) / (g * g);
+        const float fa = static_cast<float>(a - std::floor(a)), fb = static_cast<float>(b - std::floor(b));
+        return {std::min(fa, 0x1.fffffep-1f), std::min(fb, 0x1.fffffep-1f), toward};
     }
 
     // The piece of o + t d, t in (tnear, tfar), inside the medium: its in-scattering at once

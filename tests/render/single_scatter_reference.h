@@ -46,6 +46,7 @@ struct QuadratureSetup {
     int max_segments = 1;         // segments followed through the mirrors
     int steps = 3000;             // midpoints per segment
     int sub = 2;                  // sub x sub rays per pixel
+    float from_z = -1e30f;        // only the points with z >= from_z scatter (beyond a pane)
 };
 
 // The quadrature's medium and timing, as a scene states them.
@@ -95,6 +96,7 @@ inline std::vector<std::vector<Vec3>> single_scatter_buckets(const SceneDesc& s,
                         for (int i = 0; i < q.steps; ++i) {
                             const double t = (i + 0.5) * dt;
                             const Vec3 p = o + d * static_cast<float>(t);
+                            if (p.z < q.from_z) continue;
                             light(p, [&](const LightContribution& lc) {
                                 const double ph = phase(dot(lc.to_light, d));
                                 const double arrive = lc.light_ns + (q.tof ? (leg + t) / c : 0.0);
