@@ -4,6 +4,9 @@
 // with the same bookkeeping as a specular one (core/specular_path.h): new origin, direction,
 // and the inside flag and index when a rough refraction enters or leaves a solid, so that each
 // leg's time stays its length times the index over c.
+#include <algorithm>
+#include <cmath>
+
 #include "core/bsdf/bsdf.h"
 #include "core/material_table.h"
 #include "core/rng.h"
@@ -19,10 +22,29 @@ struct LocalFrame {
     Vec3 world(Vec3 v) const { return t * v.x + b * v.y + n * v.z; }
 };
 
+// The one place a GGX material's per-hit parameters are made: base colour times its texture;
+// glTF's metallic-roughness texture (linear) scales the roughness by G and metallic by B.
 inline bsdf::Bsdf bsdf_at(const SurfaceMaterial& m, const SurfaceHit& hit) {
     bsdf::Bsdf b = m.bsdf;
     if (m.albedo_texture) b.base = b.base * m.albedo_texture->sample(hit.tex_u, hit.tex_v);
+    if (m.metallic_roughness_texture) {
+        const Vec3 t = m.metallic_roughness_texture->sample(hit.tex_u, hit.tex_v);
+        b.alpha = bsdf::alpha_of_roughness(std::clamp(m.roughness * t.y, 0.0f, 1.0f));
+        b.metallic = std::clamp(b.metallic * t.z, 0.0f, 1.0f);
+    }
     return b;
+}
+
+// How camera paths and photons treat the surface at this hit (core/material_table.h): the
+// material's choice, or with a metallic-roughness texture the choice its values at the hit make
+// (a texture's metal half is followed as an untextured smooth metal is, its plastic half gathers).
+inline GlossyUse glossy_use_at(const SurfaceMaterial& m, const bsdf::Bsdf& b) {
+    if (!m.metallic_roughness_texture) return m.glossy;
+    const float roughness = std::sqrt(b.alpha);  // alpha = roughness^2 above the floor kMinAlpha
+    return metallic_roughness_use(b.metallic, roughness, b.transmission);
+}
+inline GlossyUse glossy_use_at(const SurfaceMaterial& m, const SurfaceHit& hit) {
+    return m.metallic_roughness_texture ? glossy_use_at(m, bsdf_at(m, hit)) : m.glossy;
 }
 
 // Whether the BSDF has an inside (rough glass, transmissive metallic-roughness): its frame's +z

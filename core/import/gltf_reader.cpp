@@ -407,8 +407,10 @@ private:
         m.albedo_texture = texture(pbr.baseColorTexture.index, true, name, "base colour");
         if (pbr.baseColorTexture.index >= 0 && pbr.baseColorTexture.texCoord != 0)
             notes.push_back("only TEXCOORD_0 is used");
-        if (pbr.metallicRoughnessTexture.index >= 0)
-            notes.push_back("the metallic-roughness texture is not drawn yet (its factors are)");
+        // Linear data: G scales the roughness, B the metallic factor (core/glossy_path.h).
+        m.metallic_roughness_texture = texture(pbr.metallicRoughnessTexture.index, false, name, "metallic-roughness");
+        if (pbr.metallicRoughnessTexture.index >= 0 && pbr.metallicRoughnessTexture.texCoord != 0)
+            notes.push_back("only TEXCOORD_0 is used");
         if (m.emits()) m.emission_texture = texture(gm.emissiveTexture.index, true, name, "emissive");
         if (gm.alphaMode == "BLEND" || gm.alphaMode == "MASK")
             notes.push_back("alpha " + gm.alphaMode + " is ignored (the surface is opaque)");

@@ -71,6 +71,7 @@ std::vector<TextureHeader> texture_headers(const ShapeDesc& s, const ImportedFil
     for (size_t i = 0; i < f.materials.size(); ++i)
         if (used[i]) {
             probe(f.materials[i].albedo_texture);
+            probe(f.materials[i].metallic_roughness_texture);
             if (f.materials[i].emits()) probe(f.materials[i].emission_texture);
         }
     return headers;
@@ -158,7 +159,7 @@ void resolve_imports(SceneDesc& scene, const ImportBudget& budget) {
                 if (!used[i]) continue;
                 MaterialDesc m = f.materials[i];
                 m.albedo_texture = texture(m.albedo_texture);
-                m.metallic_roughness_texture = -1;  // not drawn yet: not decoded (the importer noted it)
+                m.metallic_roughness_texture = texture(m.metallic_roughness_texture);
                 m.emission_texture = m.emits() ? texture(m.emission_texture) : -1;
                 material_map[i] = static_cast<int>(scene.materials.size());
                 scene.materials.push_back(std::move(m));
@@ -198,9 +199,11 @@ void resolve_imports(SceneDesc& scene, const ImportBudget& budget) {
         lit |= !is_black(l.type == LightType::Quad  ? l.radiance
                         : l.type == LightType::Sun ? l.irradiance
                                                    : l.power);
-    for (const ShapeDesc& s : scene.shapes)
+    for (const ShapeDesc& s : scene.shapes) {
         if (s.mesh && !lit)
             for (int32_t m : s.mesh->tri_material) if (scene.materials[static_cast<size_t>(m)].emits()) { lit = true; break; }
+        if (!s.mesh && s.material >= 0 && scene.materials[static_cast<size_t>(s.material)].emits()) lit = true;
+    }
     if (!lit)
         throw InputError(scene.source + ": the scene has no light: no light in \"lights\", none in its imported files, "
                          "and no emissive material");

@@ -109,16 +109,21 @@ struct PixelTracer {
                 return;
             }
             direct_done = false;
-            if (m.glossy == GlossyUse::Gather) {
+            bsdf::Bsdf b;  // GGX: the BSDF at the hit (textures applied)
+            GlossyUse use = GlossyUse::None;
+            if (m.glossy != GlossyUse::None) {
+                b = bsdf_at(m, hit);
+                use = glossy_use_at(m, b);
+            }
+            if (use == GlossyUse::Gather) {
                 Vec3 ns = toward ? hit.shading_normal : -hit.shading_normal;
-                store_glossy_point(hit, bsdf_at(m, hit), nf, ns, d, beta, leg_ns, specular, rng);
+                store_glossy_point(hit, b, nf, ns, d, beta, leg_ns, specular, rng);
                 return;
             }
             Vec3 w;
-            if (m.glossy == GlossyUse::Follow) {
+            if (use == GlossyUse::Follow) {
                 // Direct light here (f(wo, wi) |cos|), on the outside of a surface with an
                 // inside; then on along a sampled direction, counted as a bounce.
-                const bsdf::Bsdf b = bsdf_at(m, hit);
                 const Vec3 n_out = frame_normal(b, hit, d, inside);
                 const Vec3 nf_out = has_inside(b) && inside ? -nf : nf;
                 const LocalFrame frame(n_out);

@@ -104,7 +104,7 @@ struct PhotonPath {
             } else if (m.glossy != GlossyUse::None) {
                 // A GGX surface: a record where visible points may gather, then a sampled bounce
                 // (importance transport), with Russian roulette as at specular vertices.
-                if (m.glossy == GlossyUse::Gather && (depth >= 2 || e.direct_by_photons) && !early(t))
+                if (glossy_use_at(m, hit) == GlossyUse::Gather && (depth >= 2 || e.direct_by_photons) && !early(t))
                     store(hit.position, flux, toward ? hit.shading_normal : -hit.shading_normal, d, depth, t);
                 const Vec3 w = follow_glossy(m, hit, o, d, inside, inside_ior, rng, bsdf::Transport::Importance);
                 flux *= w;
