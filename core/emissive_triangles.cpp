@@ -5,42 +5,61 @@
 
 #include "core/import/mesh_data.h"
 #include "core/sampling.h"
+#include "core/shape_triangles.h"
 #include "core/texture.h"
 
 namespace sl {
 
 EmissiveTriangles::EmissiveTriangles(const SceneDesc& scene) : scene_(&scene) {
     std::vector<double> weight;
+    // One triangle of an emissive material; uv: its corners' texture coordinates, or null.
+    auto add = [&](Vec3 a, Vec3 b, Vec3 c, const MaterialDesc& mat, const float* uv[3]) {
+        Triangle tri;
+        tri.v0 = a;
+        tri.e1 = b - a;
+        tri.e2 = c - a;
+        Vec3 n = cross(tri.e1, tri.e2);
+        float len = length(n);
+        if (!(len > 0) || !std::isfinite(len)) return;
+        tri.normal = n / len;
+        tri.area = 0.5f * len;
+        tri.radiance = mat.emission;
+        tri.texture = mat.emission_texture;
+        tri.two_sided = mat.double_sided;
+        for (int k = 0; k < 3; ++k) {
+            tri.uv[2 * k] = uv ? uv[k][0] : 0;
+            tri.uv[2 * k + 1] = uv ? uv[k][1] : 0;
+        }
+        Vec3 mean = tri.texture >= 0 ? tri.radiance * scene.textures[static_cast<size_t>(tri.texture)].image->mean
+                                     : tri.radiance;
+        Vec3 p = mean * (kPi * tri.area * (tri.two_sided ? 2.0f : 1.0f));
+        if (!(average(p) > 0)) return;
+        power_ += p;
+        weight.push_back(average(p));
+        tris_.push_back(tri);
+    };
     for (const ShapeDesc& s : scene.shapes) {
-        if (!s.mesh) continue;
+        if (!s.mesh) {
+            // A scene file's quad or box of an emissive material (a sphere cannot emit: the
+            // parser refuses it).
+            if (s.type == ShapeType::Sphere || s.material < 0 ||
+                !scene.materials[static_cast<size_t>(s.material)].emits())
+                continue;
+            const TriangleSoup soup = triangulate_shape(s);
+            for (size_t t = 0; t + 2 < soup.indices.size(); t += 3)
+                add(soup.vertices[soup.indices[t]], soup.vertices[soup.indices[t + 1]],
+                    soup.vertices[soup.indices[t + 2]], scene.materials[static_cast<size_t>(s.material)], nullptr);
+            continue;
+        }
         const MeshData& m = *s.mesh;
         for (size_t t = 0; t < m.triangle_count(); ++t) {
             const MaterialDesc& mat = scene.materials[static_cast<size_t>(m.tri_material[t])];
             if (!mat.emits()) continue;
             const uint32_t* idx = &m.indices[3 * t];
-            Triangle tri;
-            tri.v0 = m.positions[idx[0]];
-            tri.e1 = m.positions[idx[1]] - tri.v0;
-            tri.e2 = m.positions[idx[2]] - tri.v0;
-            Vec3 c = cross(tri.e1, tri.e2);
-            float len = length(c);
-            if (!(len > 0) || !std::isfinite(len)) continue;
-            tri.normal = c / len;
-            tri.area = 0.5f * len;
-            tri.radiance = mat.emission;
-            tri.texture = mat.emission_texture;
-            tri.two_sided = mat.double_sided;
-            for (int k = 0; k < 3; ++k) {
-                tri.uv[2 * k] = m.uvs.empty() ? 0 : m.uvs[2 * idx[k]];
-                tri.uv[2 * k + 1] = m.uvs.empty() ? 0 : m.uvs[2 * idx[k] + 1];
-            }
-            Vec3 mean = tri.texture >= 0 ? tri.radiance * scene.textures[static_cast<size_t>(tri.texture)].image->mean
-                                         : tri.radiance;
-            Vec3 p = mean * (kPi * tri.area * (tri.two_sided ? 2.0f : 1.0f));
-            if (!(average(p) > 0)) continue;
-            power_ += p;
-            weight.push_back(average(p));
-            tris_.push_back(tri);
+            const float* uv[3] = {nullptr, nullptr, nullptr};
+            if (!m.uvs.empty())
+                for (int k = 0; k < 3; ++k) uv[k] = &m.uvs[2 * idx[k]];
+            add(m.positions[idx[0]], m.positions[idx[1]], m.positions[idx[2]], mat, m.uvs.empty() ? nullptr : uv);
         }
     }
     double total = 0;
