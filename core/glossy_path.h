@@ -11,6 +11,7 @@
 #include "core/material_table.h"
 #include "core/rng.h"
 #include "core/scene_geometry.h"
+#include "core/surface_material.h"
 
 namespace sl {
 
@@ -51,10 +52,10 @@ inline GlossyUse glossy_use_at(const SurfaceMaterial& m, const SurfaceHit& hit) 
 // is then the outside, known from the path's inside flag as for smooth glass.
 inline bool has_inside(const bsdf::Bsdf& b) { return !bsdf::two_sided(b); }
 
-// The frame's +z: the shading normal on the side the path arrives from (d: its direction), or
-// on the outside for a BSDF with an inside.
-inline Vec3 frame_normal(const bsdf::Bsdf& b, const SurfaceHit& hit, Vec3 d, bool inside) {
-    const Vec3 ns = dot(d, hit.normal) < 0 ? hit.shading_normal : -hit.shading_normal;
+// The frame's +z: the shading normal (normal-mapped) on the side the path arrives from (d: its
+// direction), or on the outside for a BSDF with an inside.
+inline Vec3 frame_normal(const SurfaceMaterial& m, const bsdf::Bsdf& b, const SurfaceHit& hit, Vec3 d, bool inside) {
+    const Vec3 ns = shading_normal_facing(m, hit, d);
     return has_inside(b) && inside ? -ns : ns;
 }
 
@@ -65,7 +66,7 @@ inline Vec3 frame_normal(const bsdf::Bsdf& b, const SurfaceHit& hit, Vec3 d, boo
 inline Vec3 follow_glossy(const SurfaceMaterial& m, const SurfaceHit& hit, Vec3& o, Vec3& d, bool& inside,
                           float& inside_ior, Rng& rng, bsdf::Transport mode) {
     const bsdf::Bsdf b = bsdf_at(m, hit);
-    const LocalFrame frame(frame_normal(b, hit, d, inside));
+    const LocalFrame frame(frame_normal(m, b, hit, d, inside));
     const Vec3 wo = frame.local(-d);
     const float uc = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
     const bsdf::Sample s = bsdf::sample(b, wo, uc, u1, u2, mode);

@@ -33,6 +33,10 @@ struct SurfaceMaterial {
     // Metallic-roughness: G scales `roughness`, B the BSDF's metallic (glTF), per hit.
     const TextureImage* metallic_roughness_texture = nullptr;
     float roughness = 0.5f;  // GGX kinds: the factor the texture scales
+    // Tangent-space normal map (core/surface_material.h); none on a mirror or smooth glass,
+    // whose reflection and refraction use the geometric normal.
+    const TextureImage* normal_texture = nullptr;
+    float normal_scale = 1;
     bool double_sided = false;  // emission leaves both faces (else the front)
     // GGX kinds (conductor, rough dielectric, metallic-roughness): their BSDF and how camera
     // paths use it.
@@ -85,6 +89,10 @@ public:
             m.emission_texture = image(d.emission_texture);
             m.double_sided = d.double_sided;
             m.roughness = d.roughness;
+            if (d.type != MaterialType::Mirror && d.type != MaterialType::Dielectric) {
+                m.normal_texture = image(d.normal_texture);
+                m.normal_scale = d.normal_scale;
+            }
             m.glossy = glossy_use(d);
             if (m.glossy != GlossyUse::None) {
                 m.bsdf = *bsdf_of(d);

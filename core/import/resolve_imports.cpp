@@ -72,6 +72,7 @@ std::vector<TextureHeader> texture_headers(const ShapeDesc& s, const ImportedFil
         if (used[i]) {
             probe(f.materials[i].albedo_texture);
             probe(f.materials[i].metallic_roughness_texture);
+            probe(f.materials[i].normal_texture);
             if (f.materials[i].emits()) probe(f.materials[i].emission_texture);
         }
     return headers;
@@ -160,6 +161,7 @@ void resolve_imports(SceneDesc& scene, const ImportBudget& budget) {
                 MaterialDesc m = f.materials[i];
                 m.albedo_texture = texture(m.albedo_texture);
                 m.metallic_roughness_texture = texture(m.metallic_roughness_texture);
+                m.normal_texture = texture(m.normal_texture);
                 m.emission_texture = m.emits() ? texture(m.emission_texture) : -1;
                 material_map[i] = static_cast<int>(scene.materials.size());
                 scene.materials.push_back(std::move(m));
@@ -173,7 +175,17 @@ void resolve_imports(SceneDesc& scene, const ImportBudget& budget) {
             if (!is_finite(p)) throw InputError(s.file + ": a vertex is not finite once placed in the scene");
         }
         for (Vec3& n : mesh->normals) n = place.vector(n);
+        for (size_t i = 0; i + 3 < mesh->tangents.size(); i += 4) {
+            const Vec3 t = place.vector({mesh->tangents[i], mesh->tangents[i + 1], mesh->tangents[i + 2]});
+            mesh->tangents[i] = t.x, mesh->tangents[i + 1] = t.y, mesh->tangents[i + 2] = t.z;
+        }
         for (int32_t& m : mesh->tri_material) m = material_map[static_cast<size_t>(m)];
+        // Hits on it carry a tangent frame when one of its materials draws a normal map.
+        for (int32_t m : mesh->tri_material)
+            if (scene.materials[static_cast<size_t>(m)].normal_texture >= 0) {
+                mesh->tangent_frames = !mesh->uvs.empty();
+                break;
+            }
         s.mesh = std::move(mesh);
         s.first_light = static_cast<int>(scene.lights.size());
         s.light_count = static_cast<int>(f.lights.size());

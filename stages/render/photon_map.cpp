@@ -98,7 +98,8 @@ struct PhotonPath {
                 if (q <= 0 || (q < 1 && rng.uniform() >= q)) return;
                 flux = flux * albedo * (1.0f / q);
                 // Scatter about the shading normal; a direction below the true surface ends the path.
-                d = sample_cosine_hemisphere(ns, rng.uniform(), rng.uniform());
+                const Vec3 nm = m.normal_texture ? shading_normal_facing(m, hit, d) : ns;
+                d = sample_cosine_hemisphere(nm, rng.uniform(), rng.uniform());
                 if (dot(d, nf) <= 0) return;
                 o = hit.position + nf * ray_epsilon(hit.position, hit.t);
             } else if (m.glossy != GlossyUse::None) {
