@@ -46,12 +46,14 @@ public:
         if (top.has("shapes"))
             for_each_element(top, "shapes",
                              [&](const JsonObject& s) { scene_.shapes.push_back(shape(s)); });
-        // Imported files may bring their own lights: then "lights" may be omitted or empty, and
-        // whether the scene has any light is checked once they are read (core/import).
-        // (Only a glTF file, or a mesh that keeps its own materials, can bring light.)
+        // Imported files and emissive materials may bring the light: then "lights" may be
+        // omitted or empty, and whether the scene has any light is checked once the files are
+        // read (core/import). (Only a glTF file, or a mesh that keeps its own materials, can
+        // bring light of its own.)
         bool imports = false;
         for (const ShapeDesc& sh : scene_.shapes)
-            imports |= sh.type == ShapeType::Gltf || (sh.type == ShapeType::Mesh && sh.material < 0);
+            imports |= sh.type == ShapeType::Gltf || (sh.type == ShapeType::Mesh && sh.material < 0) ||
+                       (sh.material >= 0 && scene_.materials[static_cast<size_t>(sh.material)].emits());
         if (!imports || top.has("lights"))
             for_each_element(top, "lights",
                              [&](const JsonObject& l) { scene_.lights.push_back(light(l)); });
@@ -230,6 +232,8 @@ private:
                         m.fail("ior", "must differ from 1 when the material transmits (an index of 1 is no interface)");
                     break;
             }
+            // Any surface may emit (W sr^-1 m^-2 from its front), as imported emissive materials do.
+            if (m.has("emission")) d.emission = color(m, "emission");
             material_index_[d.name] = static_cast<int>(scene_.materials.size());
             scene_.materials.push_back(d);
         }
@@ -304,6 +308,9 @@ private:
         // A mesh or glTF file without "material" keeps its own materials.
         const bool imported = d.type == ShapeType::Mesh || d.type == ShapeType::Gltf;
         d.material = imported && !s.has("material") ? -1 : material_ref(s);
+        // Emitters are sampled as triangles (core/emissive_triangles.h): a sphere has none.
+        if (d.type == ShapeType::Sphere && scene_.materials[static_cast<size_t>(d.material)].emits())
+            s.fail("material", "names an emissive material, and a sphere cannot emit (use a quad, box or mesh)");
         return d;
     }
 

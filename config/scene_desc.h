@@ -51,6 +51,10 @@ struct MaterialDesc {
     int albedo_texture = -1;    // index into SceneDesc::textures; multiplies albedo
     Vec3 emission;              // W sr^-1 m^-2: the surface is an area light
     int emission_texture = -1;  // multiplies emission
+    // A tangent-space normal map (glTF normalTexture, MTL norm): linear, texel c -> 2c - 1, x and
+    // y times normal_scale; on diffuse and GGX surfaces (core/surface_material.h).
+    int normal_texture = -1;
+    float normal_scale = 1;
     bool double_sided = false;  // emission leaves both faces (else the front: counter-clockwise)
     bool emits() const { return !is_black(emission); }
 };

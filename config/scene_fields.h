@@ -20,7 +20,8 @@ template <class F> void visit_fields(const MaterialDesc& m, F&& f) {
     f("metallic", m.metallic); f("specular", m.specular); f("specular_color", m.specular_color);
     f("transmission", m.transmission); f("metallic_roughness_texture", m.metallic_roughness_texture);
     f("albedo_texture", m.albedo_texture); f("emission", m.emission);
-    f("emission_texture", m.emission_texture); f("double_sided", m.double_sided);
+    f("emission_texture", m.emission_texture); f("normal_texture", m.normal_texture);
+    f("normal_scale", m.normal_scale); f("double_sided", m.double_sided);
 }
 
 template <class F> void visit_fields(const TextureDesc& t, F&& f) {

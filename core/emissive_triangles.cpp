@@ -6,15 +6,43 @@
 #include "core/import/mesh_data.h"
 #include "core/import/mesh_instances.h"
 #include "core/sampling.h"
+#include "core/shape_triangles.h"
 #include "core/texture.h"
 
 namespace sl {
 
 EmissiveTriangles::EmissiveTriangles(const SceneDesc& scene) : scene_(&scene) {
     std::vector<double> weight;
-    // A mesh placed by instances: its emissive triangles, and only those, in scene space, one
-    // per copy (a mirroring copy keeps its front: core/import/mesh_instances.h).
-    auto add = [&](const MeshData& m, const Affine* placed) {
+    // One triangle of an emissive material; uv: its corners' texture coordinates, or null.
+    auto add = [&](Vec3 a, Vec3 b, Vec3 c, const MaterialDesc& mat, const float* uv[3]) {
+        Triangle tri;
+        tri.v0 = a;
+        tri.e1 = b - a;
+        tri.e2 = c - a;
+        Vec3 n = cross(tri.e1, tri.e2);
+        float len = length(n);
+        if (!(len > 0) || !std::isfinite(len)) return;
+        tri.normal = n / len;
+        tri.area = 0.5f * len;
+        tri.radiance = mat.emission;
+        tri.texture = mat.emission_texture;
+        tri.two_sided = mat.double_sided;
+        for (int k = 0; k < 3; ++k) {
+            tri.uv[2 * k] = uv ? uv[k][0] : 0;
+            tri.uv[2 * k + 1] = uv ? uv[k][1] : 0;
+        }
+        Vec3 mean = tri.texture >= 0 ? tri.radiance * scene.textures[static_cast<size_t>(tri.texture)].image->mean
+                                     : tri.radiance;
+        Vec3 p = mean * (kPi * tri.area * (tri.two_sided ? 2.0f : 1.0f));
+        if (!(average(p) > 0)) return;
+        power_ += p;
+        weight.push_back(average(p));
+        tris_.push_back(tri);
+    };
+    // A mesh's emissive triangles; a mesh placed by instances: its emissive triangles, and only
+    // those, in scene space, one per copy (a mirroring copy keeps its front:
+    // core/import/mesh_instances.h).
+    auto add_mesh = [&](const MeshData& m, const Affine* placed) {
         for (size_t t = 0; t < m.triangle_count(); ++t) {
             const MaterialDesc& mat = scene.materials[static_cast<size_t>(m.tri_material[t])];
             if (!mat.emits()) continue;
@@ -28,36 +56,28 @@ EmissiveTriangles::EmissiveTriangles(const SceneDesc& scene) : scene_(&scene) {
                     v[k] = m.positions[idx[k]];
                 }
             }
-            Triangle tri;
-            tri.v0 = v[0];
-            tri.e1 = v[1] - tri.v0;
-            tri.e2 = v[2] - tri.v0;
-            Vec3 c = cross(tri.e1, tri.e2);
-            float len = length(c);
-            if (!(len > 0) || !std::isfinite(len)) continue;
-            tri.normal = c / len;
-            tri.area = 0.5f * len;
-            tri.radiance = mat.emission;
-            tri.texture = mat.emission_texture;
-            tri.two_sided = mat.double_sided;
-            for (int k = 0; k < 3; ++k) {
-                tri.uv[2 * k] = m.uvs.empty() ? 0 : m.uvs[2 * idx[k]];
-                tri.uv[2 * k + 1] = m.uvs.empty() ? 0 : m.uvs[2 * idx[k] + 1];
-            }
-            Vec3 mean = tri.texture >= 0 ? tri.radiance * scene.textures[static_cast<size_t>(tri.texture)].image->mean
-                                         : tri.radiance;
-            Vec3 p = mean * (kPi * tri.area * (tri.two_sided ? 2.0f : 1.0f));
-            if (!(average(p) > 0)) continue;
-            power_ += p;
-            weight.push_back(average(p));
-            tris_.push_back(tri);
+            const float* uv[3] = {nullptr, nullptr, nullptr};
+            if (!m.uvs.empty())
+                for (int k = 0; k < 3; ++k) uv[k] = &m.uvs[2 * idx[k]];
+            add(v[0], v[1], v[2], mat, m.uvs.empty() ? nullptr : uv);
         }
     };
     for (const ShapeDesc& s : scene.shapes) {
-        if (s.mesh) add(*s.mesh, nullptr);
+        if (s.mesh) add_mesh(*s.mesh, nullptr);
         if (s.instances)
             for (const InstancedMesh& im : s.instances->meshes)
-                for (const Affine& a : im.placements) add(*im.mesh, &a);
+                for (const Affine& a : im.placements) add_mesh(*im.mesh, &a);
+        if (!s.mesh && !s.instances) {
+            // A scene file's quad or box of an emissive material (a sphere cannot emit: the
+            // parser refuses it).
+            if (s.type == ShapeType::Sphere || s.material < 0 ||
+                !scene.materials[static_cast<size_t>(s.material)].emits())
+                continue;
+            const TriangleSoup soup = triangulate_shape(s);
+            for (size_t t = 0; t + 2 < soup.indices.size(); t += 3)
+                add(soup.vertices[soup.indices[t]], soup.vertices[soup.indices[t + 1]],
+                    soup.vertices[soup.indices[t + 2]], scene.materials[static_cast<size_t>(s.material)], nullptr);
+        }
     }
     double total = 0;
     for (double w : weight) total += w;

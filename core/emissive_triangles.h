@@ -1,5 +1,6 @@
 #pragma once
-// The emissive triangles of imported meshes as one light: flat arrays, a triangle chosen in
+// The emissive triangles of imported meshes (and of a scene file's quads and boxes whose material
+// has an emission) as one light: flat arrays, a triangle chosen in
 // proportion to its power (area x radiance, times its emission texture's mean), a point on
 // it uniformly. Photons leave it cosine-distributed; direct light samples a point on it.
 #include <cstdint>

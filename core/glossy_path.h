@@ -4,10 +4,14 @@
 // with the same bookkeeping as a specular one (core/specular_path.h): new origin, direction,
 // and the inside flag and index when a rough refraction enters or leaves a solid, so that each
 // leg's time stays its length times the index over c.
+#include <algorithm>
+#include <cmath>
+
 #include "core/bsdf/bsdf.h"
 #include "core/material_table.h"
 #include "core/rng.h"
 #include "core/scene_geometry.h"
+#include "core/surface_material.h"
 
 namespace sl {
 
@@ -19,20 +23,39 @@ struct LocalFrame {
     Vec3 world(Vec3 v) const { return t * v.x + b * v.y + n * v.z; }
 };
 
+// The one place a GGX material's per-hit parameters are made: base colour times its texture;
+// glTF's metallic-roughness texture (linear) scales the roughness by G and metallic by B.
 inline bsdf::Bsdf bsdf_at(const SurfaceMaterial& m, const SurfaceHit& hit) {
     bsdf::Bsdf b = m.bsdf;
     if (m.albedo_texture) b.base = b.base * m.albedo_texture->sample(hit.tex_u, hit.tex_v);
+    if (m.metallic_roughness_texture) {
+        const Vec3 t = m.metallic_roughness_texture->sample(hit.tex_u, hit.tex_v);
+        b.alpha = bsdf::alpha_of_roughness(std::clamp(m.roughness * t.y, 0.0f, 1.0f));
+        b.metallic = std::clamp(b.metallic * t.z, 0.0f, 1.0f);
+    }
     return b;
+}
+
+// How camera paths and photons treat the surface at this hit (core/material_table.h): the
+// material's choice, or with a metallic-roughness texture the choice its values at the hit make
+// (a texture's metal half is followed as an untextured smooth metal is, its plastic half gathers).
+inline GlossyUse glossy_use_at(const SurfaceMaterial& m, const bsdf::Bsdf& b) {
+    if (!m.metallic_roughness_texture) return m.glossy;
+    const float roughness = std::sqrt(b.alpha);  // alpha = roughness^2 above the floor kMinAlpha
+    return metallic_roughness_use(b.metallic, roughness, b.transmission);
+}
+inline GlossyUse glossy_use_at(const SurfaceMaterial& m, const SurfaceHit& hit) {
+    return m.metallic_roughness_texture ? glossy_use_at(m, bsdf_at(m, hit)) : m.glossy;
 }
 
 // Whether the BSDF has an inside (rough glass, transmissive metallic-roughness): its frame's +z
 // is then the outside, known from the path's inside flag as for smooth glass.
 inline bool has_inside(const bsdf::Bsdf& b) { return !bsdf::two_sided(b); }
 
-// The frame's +z: the shading normal on the side the path arrives from (d: its direction), or
-// on the outside for a BSDF with an inside.
-inline Vec3 frame_normal(const bsdf::Bsdf& b, const SurfaceHit& hit, Vec3 d, bool inside) {
-    const Vec3 ns = dot(d, hit.normal) < 0 ? hit.shading_normal : -hit.shading_normal;
+// The frame's +z: the shading normal (normal-mapped) on the side the path arrives from (d: its
+// direction), or on the outside for a BSDF with an inside.
+inline Vec3 frame_normal(const SurfaceMaterial& m, const bsdf::Bsdf& b, const SurfaceHit& hit, Vec3 d, bool inside) {
+    const Vec3 ns = shading_normal_facing(m, hit, d);
     return has_inside(b) && inside ? -ns : ns;
 }
 
@@ -43,7 +66,7 @@ inline Vec3 frame_normal(const bsdf::Bsdf& b, const SurfaceHit& hit, Vec3 d, boo
 inline Vec3 follow_glossy(const SurfaceMaterial& m, const SurfaceHit& hit, Vec3& o, Vec3& d, bool& inside,
                           float& inside_ior, Rng& rng, bsdf::Transport mode) {
     const bsdf::Bsdf b = bsdf_at(m, hit);
-    const LocalFrame frame(frame_normal(b, hit, d, inside));
+    const LocalFrame frame(frame_normal(m, b, hit, d, inside));
     const Vec3 wo = frame.local(-d);
     const float uc = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
     const bsdf::Sample s = bsdf::sample(b, wo, uc, u1, u2, mode);

@@ -30,6 +30,13 @@ struct SurfaceMaterial {
     Vec3 emission;     // W sr^-1 m^-2: the surface is an area light
     const TextureImage* albedo_texture = nullptr;    // multiplies albedo
     const TextureImage* emission_texture = nullptr;  // multiplies emission
+    // Metallic-roughness: G scales `roughness`, B the BSDF's metallic (glTF), per hit.
+    const TextureImage* metallic_roughness_texture = nullptr;
+    float roughness = 0.5f;  // GGX kinds: the factor the texture scales
+    // Tangent-space normal map (core/surface_material.h); none on a mirror or smooth glass,
+    // whose reflection and refraction use the geometric normal.
+    const TextureImage* normal_texture = nullptr;
+    float normal_scale = 1;
     bool double_sided = false;  // emission leaves both faces (else the front)
     // GGX kinds (conductor, rough dielectric, metallic-roughness): their BSDF and how camera
     // paths use it.
@@ -37,6 +44,14 @@ struct SurfaceMaterial {
     bsdf::Bsdf bsdf;
     bool emits() const { return !is_black(emission); }
 };
+
+// A metallic-roughness surface by its numbers (the material's factors, or at a hit its
+// textured values: core/glossy_path.h).
+inline GlossyUse metallic_roughness_use(float metallic, float roughness, float transmission) {
+    if (transmission > 0) return GlossyUse::Follow;  // it has an inside, as glass does
+    // A metal has no diffuse base: like a conductor. Anything with a diffuse base gathers.
+    return metallic >= 1 && roughness < kFollowBelowRoughness ? GlossyUse::Follow : GlossyUse::Gather;
+}
 
 inline GlossyUse glossy_use(const MaterialDesc& d) {
     switch (d.type) {
@@ -49,10 +64,7 @@ inline GlossyUse glossy_use(const MaterialDesc& d) {
     case MaterialType::Conductor:
         return d.roughness < kFollowBelowRoughness ? GlossyUse::Follow : GlossyUse::Gather;
     case MaterialType::MetallicRoughness:
-        if (d.transmission > 0) return GlossyUse::Follow;  // it has an inside, as glass does
-        // A metal has no diffuse base: like a conductor. Anything with a diffuse base gathers.
-        return d.metallic >= 1 && d.roughness < kFollowBelowRoughness ? GlossyUse::Follow
-                   : GlossyUse::Gather;
+        return metallic_roughness_use(d.metallic, d.roughness, d.transmission);
     }
     return GlossyUse::None;
 }
@@ -76,11 +88,19 @@ public:
             m.albedo_texture = image(d.albedo_texture);
             m.emission_texture = image(d.emission_texture);
             m.double_sided = d.double_sided;
+            m.roughness = d.roughness;
+            if (d.type != MaterialType::Mirror && d.type != MaterialType::Dielectric) {
+                m.normal_texture = image(d.normal_texture);
+                m.normal_scale = d.normal_scale;
+            }
             m.glossy = glossy_use(d);
             if (m.glossy != GlossyUse::None) {
                 m.bsdf = *bsdf_of(d);
-                // Only the metallic-roughness base colour has a texture.
-                if (d.type != MaterialType::MetallicRoughness) m.albedo_texture = nullptr;
+                // Only the metallic-roughness material has textures (base colour, metallic-roughness).
+                if (d.type == MaterialType::MetallicRoughness)
+                    m.metallic_roughness_texture = image(d.metallic_roughness_texture);
+                else
+                    m.albedo_texture = nullptr;
             }
             materials_.push_back(m);
         }

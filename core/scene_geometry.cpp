@@ -17,6 +17,35 @@ void embree_error(void*, RTCError code, const char* str) {
     (void)str;
 }
 
+// A hit's tangent frame on a normal-mapped mesh: glTF's TANGENT interpolated when the file
+// has it; otherwise per triangle from its UV derivatives, the tangent dp/du and the handedness
+// that makes the bitangent -dp/dv (glTF's v runs down the image and a normal map's +y is up).
+// MikkTSpace, which glTF names, averages these per-triangle frames over the faces that share a
+// vertex: on a flat or UV-continuous surface the two are the same direction.
+void tangent_frame(const MeshData& m, const uint32_t* tri, float bu, float bv, float bw, SurfaceHit& hit) {
+    if (!m.tangents.empty()) {
+        const float *t0 = &m.tangents[4 * tri[0]], *t1 = &m.tangents[4 * tri[1]], *t2 = &m.tangents[4 * tri[2]];
+        const Vec3 t = Vec3(t0[0], t0[1], t0[2]) * bw + Vec3(t1[0], t1[1], t1[2]) * bu + Vec3(t2[0], t2[1], t2[2]) * bv;
+        const float l = length(t);
+        if (l > 0 && std::isfinite(l)) {
+            hit.tangent = t / l;
+            hit.tangent_sign = t0[3] < 0 ? -1.0f : 1.0f;
+            return;
+        }  // (a primitive without TANGENT among ones with: from its UVs)
+    }
+    const Vec3 p0 = m.positions[tri[0]], e1 = m.positions[tri[1]] - p0, e2 = m.positions[tri[2]] - p0;
+    const float* uv = m.uvs.data();
+    const float du1 = uv[2 * tri[1]] - uv[2 * tri[0]], dv1 = uv[2 * tri[1] + 1] - uv[2 * tri[0] + 1];
+    const float du2 = uv[2 * tri[2]] - uv[2 * tri[0]], dv2 = uv[2 * tri[2] + 1] - uv[2 * tri[0] + 1];
+    const float det = du1 * dv2 - du2 * dv1;
+    if (!(std::abs(det) > 0)) return;  // degenerate UVs: no frame, the map is not applied
+    const Vec3 dpdu = (e1 * dv2 - e2 * dv1) / det, dpdv = (e2 * du1 - e1 * du2) / det;
+    const float l = length(dpdu);
+    if (!(l > 0) || !std::isfinite(l)) return;
+    hit.tangent = dpdu / l;
+    hit.tangent_sign = dot(cross(hit.shading_normal, hit.tangent), dpdv) > 0 ? -1.0f : 1.0f;
+}
+
 }  // namespace
 
 SceneGeometry::SceneGeometry(const SceneDesc& desc) {
@@ -195,8 +224,8 @@ bool SceneGeometry::intersect(Vec3 o, Vec3 d, float tnear, float tfar, SurfaceHi
     const InstancePlacement* placed = geom_placed_[id];
     hit.t = rh.ray.tfar;
     hit.position = o + d * hit.t;
-    Vec3 n{rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z};
-    if (placed) n = placed->normals(n);
+    const Vec3 ng_local{rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z};
+    Vec3 n = placed ? placed->normals(ng_local) : ng_local;
     float len = length(n);
     hit.normal = len > 0 ? n / len : Vec3(0, 0, 1);
     hit.material = geom_material_[id];
@@ -208,8 +237,10 @@ bool SceneGeometry::intersect(Vec3 o, Vec3 d, float tnear, float tfar, SurfaceHi
         hit.material = m->tri_material[prim];
         const uint32_t* tri = &m->indices[3 * prim];
         const float bu = rh.hit.u, bv = rh.hit.v, bw = 1 - bu - bv;
+        Vec3 ns_local = ng_local;  // the shading normal in the mesh's own space (instances' tangent frames)
         if (!m->normals.empty()) {
             Vec3 ns = m->normals[tri[0]] * bw + m->normals[tri[1]] * bu + m->normals[tri[2]] * bv;
+            ns_local = dot(ns, ng_local) < 0 ? -ns : ns;
             if (placed) ns = placed->normals(ns);
             float l = length(ns);
             if (l > 0 && std::isfinite(l)) {
@@ -221,6 +252,20 @@ bool SceneGeometry::intersect(Vec3 o, Vec3 d, float tnear, float tfar, SurfaceHi
             const float* uv = m->uvs.data();
             hit.tex_u = uv[2 * tri[0]] * bw + uv[2 * tri[1]] * bu + uv[2 * tri[2]] * bv;
             hit.tex_v = uv[2 * tri[0] + 1] * bw + uv[2 * tri[1] + 1] * bu + uv[2 * tri[2] + 1] * bv;
+            if (m->tangent_frames && !placed) tangent_frame(*m, tri, bu, bv, bw, hit);
+            if (m->tangent_frames && placed) {
+                // Made in the mesh's own space, then placed: the tangent is a surface direction
+                // (the placement's linear part), and a mirroring placement flips the handedness.
+                SurfaceHit local;
+                local.shading_normal = ns_local;
+                tangent_frame(*m, tri, bu, bv, bw, local);
+                const Vec3 t = placed->to_scene.vector(local.tangent);
+                const float l = length(t);
+                if (local.tangent_sign != 0 && l > 0 && std::isfinite(l)) {
+                    hit.tangent = t / l;
+                    hit.tangent_sign = placed->to_scene.det() < 0 ? -local.tangent_sign : local.tangent_sign;
+                }
+            }
         }
     }
     return true;

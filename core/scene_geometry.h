@@ -24,6 +24,11 @@ struct SurfaceHit {
     Vec3 shading_normal;
     Vec3 front;         // the counter-clockwise face's side (+-normal): an emitter's front
     float tex_u = 0, tex_v = 0;  // texture coordinates, when the mesh has them
+    // Normal-mapped meshes only (MeshData::tangent_frames): the unit tangent (along +u) and the
+    // handedness of the bitangent cross(shading_normal, tangent) * tangent_sign, which points
+    // "up" the image (-v); 0 when there is no frame (no UVs, or degenerate ones).
+    Vec3 tangent;
+    float tangent_sign = 0;
     int material = -1;  // index into SceneDesc::materials; -1 for a light's surface
     int light = -1;     // index into SceneDesc::lights when the surface is a quad light
 };

@@ -209,6 +209,7 @@ public:
             mesh.positions.shrink_to_fit();
             mesh.normals.shrink_to_fit();
             mesh.uvs.shrink_to_fit();
+            mesh.tangents.shrink_to_fit();
             mesh.indices.shrink_to_fit();
             mesh.tri_material.shrink_to_fit();
         };
@@ -416,14 +417,18 @@ private:
         m.specular = static_cast<float>(std::clamp(ext_number(gm.extensions, "KHR_materials_specular", "specularFactor", 1), 0.0, 1.0));
         m.specular_color = ext_color(gm.extensions, "KHR_materials_specular", "specularColorFactor", Vec3(1));
         m.albedo_texture = texture(pbr.baseColorTexture.index, true, name, "base colour");
-        if (pbr.baseColorTexture.index >= 0 && pbr.baseColorTexture.texCoord != 0)
+        // Linear data: G scales the roughness, B the metallic factor (core/glossy_path.h).
+        m.metallic_roughness_texture = texture(pbr.metallicRoughnessTexture.index, false, name, "metallic-roughness");
+        // A tangent-space normal map, linear (core/surface_material.h).
+        m.normal_texture = texture(gm.normalTexture.index, false, name, "normal");
+        m.normal_scale = std::isfinite(gm.normalTexture.scale) ? static_cast<float>(gm.normalTexture.scale) : 1.0f;
+        if ((pbr.baseColorTexture.index >= 0 && pbr.baseColorTexture.texCoord != 0) ||
+            (pbr.metallicRoughnessTexture.index >= 0 && pbr.metallicRoughnessTexture.texCoord != 0) ||
+            (gm.normalTexture.index >= 0 && gm.normalTexture.texCoord != 0))
             notes.push_back("only TEXCOORD_0 is used");
-        if (pbr.metallicRoughnessTexture.index >= 0)
-            notes.push_back("the metallic-roughness texture is not drawn yet (its factors are)");
         if (m.emits()) m.emission_texture = texture(gm.emissiveTexture.index, true, name, "emissive");
         if (gm.alphaMode == "BLEND" || gm.alphaMode == "MASK")
             notes.push_back("alpha " + gm.alphaMode + " is ignored (the surface is opaque)");
-        if (gm.normalTexture.index >= 0) notes.push_back("the normal map is ignored");
         std::vector<std::string> lines;
         if (!notes.empty()) {
             std::string all;
@@ -584,7 +589,7 @@ private:
     void add_mesh(const tinygltf::Mesh& mesh, int mesh_index, const Mat4& m, MeshData& out) {
         const Mat4 nm = normal_matrix(m);
         const bool flip = det3(m) < 0;
-        std::map<std::tuple<int, int, int>, uint32_t> placed;
+        std::map<std::tuple<int, int, int, int>, uint32_t> placed;
         for (size_t pi = 0; pi < mesh.primitives.size(); ++pi) {
             const tinygltf::Primitive& p = mesh.primitives[pi];
             const std::string where = "mesh " + std::to_string(mesh_index) + " primitive " + std::to_string(pi);
@@ -597,7 +602,7 @@ private:
             if (pos_it == p.attributes.end()) fail(where + ": has no POSITION");
             View pv = accessor(pos_it->second, TINYGLTF_TYPE_VEC3, "POSITION", where);
             if (pv.component_type != TINYGLTF_COMPONENT_TYPE_FLOAT) fail(where + ": POSITION must be float");
-            std::optional<View> nv, tv;
+            std::optional<View> nv, tv, gv;
             if (auto it = p.attributes.find("NORMAL"); it != p.attributes.end()) {
                 nv = accessor(it->second, TINYGLTF_TYPE_VEC3, "NORMAL", where);
                 if (nv->count != pv.count || nv->component_type != TINYGLTF_COMPONENT_TYPE_FLOAT)
@@ -609,6 +614,15 @@ private:
             }
             if (p.material >= static_cast<int>(model_.materials.size()))
                 fail(where + ": material " + std::to_string(p.material) + " does not exist");
+            // Tangents for normal maps (MikkTSpace in glTF; core/scene_geometry.cpp otherwise),
+            // read only for a primitive whose own material draws one.
+            const bool normal_mapped = use_materials_ && p.material >= 0 &&
+                                       model_.materials[static_cast<size_t>(p.material)].normalTexture.index >= 0;
+            if (auto it = p.attributes.find("TANGENT"); it != p.attributes.end() && tv && normal_mapped) {
+                gv = accessor(it->second, TINYGLTF_TYPE_VEC4, "TANGENT", where);
+                if (gv->count != pv.count || gv->component_type != TINYGLTF_COMPONENT_TYPE_FLOAT)
+                    fail(where + ": TANGENT must be float and as long as POSITION");
+            }
             int material = use_materials_ ? p.material : -1;
             if (material >= static_cast<int>(out_.materials.size())) fail(where + ": material " + std::to_string(material) + " does not exist");
             if (material < 0) {
@@ -625,16 +639,17 @@ private:
             material_used_[static_cast<size_t>(material)] = true;
             // Primitives of one mesh often share their vertex accessors: place those once.
             const auto key = std::make_tuple(pos_it->second, nv ? p.attributes.at("NORMAL") : -1,
-                                             tv ? p.attributes.at("TEXCOORD_0") : -1);
+                                             tv ? p.attributes.at("TEXCOORD_0") : -1, gv ? p.attributes.at("TANGENT") : -1);
             auto [shared, fresh] = placed.try_emplace(key, static_cast<uint32_t>(out.positions.size()));
             const uint32_t base = shared->second;
-            if (fresh) add_vertices(pv, nv, tv, m, nm, where, out);
+            if (fresh) add_vertices(pv, nv, tv, gv, m, nm, flip, where, out);
             add_triangles(p, pv.count, base, flip, material, where, out);
         }
     }
 
-    void add_vertices(const View& pv, const std::optional<View>& nv, const std::optional<View>& tv, const Mat4& m,
-                      const Mat4& nm, const std::string& where, MeshData& out) {
+    void add_vertices(const View& pv, const std::optional<View>& nv, const std::optional<View>& tv,
+                      const std::optional<View>& gv, const Mat4& m, const Mat4& nm, bool flip, const std::string& where,
+                      MeshData& out) {
         {
             const uint32_t base = static_cast<uint32_t>(out.positions.size());
             const bool any_normals_before = !out.normals.empty() || base == 0;
@@ -668,6 +683,22 @@ private:
                 }
             } else if (!out.uvs.empty()) {
                 out.uvs.resize(2 * out.positions.size(), 0.0f);
+            }
+            // Tangents: placed as directions (a mirroring node flips the handedness w); zero
+            // where a primitive has none (its frames then come from its UVs).
+            if (gv) {
+                if (out.tangents.size() < 4 * base) out.tangents.resize(4 * base, 0.0f);
+                for (size_t i = 0; i < pv.count; ++i) {
+                    Vec3 t{component(*gv, i, 0), component(*gv, i, 1), component(*gv, i, 2)};
+                    const float w = component(*gv, i, 3);
+                    if (!is_finite(t) || !std::isfinite(w)) fail(where + ": TANGENT " + std::to_string(i) + " is not finite");
+                    t = apply_vector(m, t);
+                    const float l = length(t);
+                    out.tangents.insert(out.tangents.end(), {l > 0 ? t.x / l : 0, l > 0 ? t.y / l : 0, l > 0 ? t.z / l : 0,
+                                                             (w < 0) != flip ? -1.0f : 1.0f});
+                }
+            } else if (!out.tangents.empty()) {
+                out.tangents.resize(4 * out.positions.size(), 0.0f);
             }
         }
     }

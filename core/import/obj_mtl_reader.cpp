@@ -210,8 +210,17 @@ void read_mtl(const std::string& path, ImportedFile& out, MtlResult& mtl) {
             int tex = add_texture(out, texture_path(lr, t, dir, note), true);
             (k == "map_Kd" ? cur->albedo_texture : cur->emission_texture) = tex;
             if (!note.empty()) warn_once(note, note);
-        } else if (k == "map_Bump" || k == "bump" || k == "map_bump" || k == "norm" || k == "disp") {
-            warn_once("bump", "bump and normal maps are ignored");
+        } else if (k == "norm") {
+            // A tangent-space normal map (the PBR extension of MTL), linear; -bm scales its x and y.
+            std::string note;
+            cur->normal_texture = add_texture(out, texture_path(lr, t, dir, note), false);
+            if (t.size() == 4 && t[1] == "-bm") {
+                cur->normal_scale = static_cast<float>(lr.number(t[2]));
+                note.clear();
+            }
+            if (!note.empty()) warn_once(note, note);
+        } else if (k == "map_Bump" || k == "bump" || k == "map_bump" || k == "disp") {
+            warn_once("bump", "bump (height) and displacement maps are ignored");
         } else if (k == "map_d") {
             warn_once("alpha", "alpha textures are ignored (the surface is opaque)");
         } else if (k == "map_Ks" || k == "map_Ns" || k == "map_Ka" || k == "refl") {
@@ -257,6 +266,10 @@ void read_mtl(const std::string& path, ImportedFile& out, MtlResult& mtl) {
         if ((!textured && m.albedo_texture >= 0) || (smooth && m.emits()))
             warn_once("specular", "a mirror, metal or glass material keeps no texture, and a smooth one no emission");
         if (!textured) m.albedo_texture = -1;
+        if (smooth && m.normal_texture >= 0) {
+            warn_once("norm", "a mirror or smooth glass keeps no normal map (it reflects about the true surface)");
+            m.normal_texture = -1;
+        }
         if (smooth) {
             m.emission = Vec3(0);
             m.emission_texture = -1;

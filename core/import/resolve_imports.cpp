@@ -108,6 +108,8 @@ std::vector<TextureHeader> texture_headers(const ShapeDesc& s, const ImportedFil
     for (size_t i = 0; i < f.materials.size(); ++i)
         if (used[i]) {
             probe(f.materials[i].albedo_texture);
+            probe(f.materials[i].metallic_roughness_texture);
+            probe(f.materials[i].normal_texture);
             if (f.materials[i].emits()) probe(f.materials[i].emission_texture);
         }
     return headers;
@@ -209,7 +211,8 @@ void resolve_imports(SceneDesc& scene, const ImportBudget& budget) {
                 if (!used[i]) continue;
                 MaterialDesc m = f.materials[i];
                 m.albedo_texture = texture(m.albedo_texture);
-                m.metallic_roughness_texture = -1;  // not drawn yet: not decoded (the importer noted it)
+                m.metallic_roughness_texture = texture(m.metallic_roughness_texture);
+                m.normal_texture = texture(m.normal_texture);
                 m.emission_texture = m.emits() ? texture(m.emission_texture) : -1;
                 material_map[i] = static_cast<int>(scene.materials.size());
                 scene.materials.push_back(std::move(m));
@@ -218,9 +221,19 @@ void resolve_imports(SceneDesc& scene, const ImportBudget& budget) {
             // (OBJ files skip their library when the entry names a material.)
         }
         for (int32_t& m : f.mesh.tri_material) m = material_map[static_cast<size_t>(m)];
+        // Hits on a mesh carry a tangent frame when one of its materials draws a normal map.
+        auto mark_tangent_frames = [&](MeshData& mesh) {
+            for (int32_t m : mesh.tri_material)
+                if (scene.materials[static_cast<size_t>(m)].normal_texture >= 0) {
+                    mesh.tangent_frames = !mesh.uvs.empty();
+                    break;
+                }
+        };
+        mark_tangent_frames(f.mesh);
         std::vector<InstancedMesh> prototypes;  // the file's own instanced meshes, placed in the file
         for (ImportedInstances& in : f.instanced) {
             for (int32_t& m : in.mesh.tri_material) m = material_map[static_cast<size_t>(m)];
+            mark_tangent_frames(in.mesh);
             prototypes.push_back({std::make_shared<const MeshData>(std::move(in.mesh)), std::move(in.placements)});
         }
         const std::vector<ShapeDesc*>& placing = users[fi];
@@ -259,6 +272,10 @@ void resolve_imports(SceneDesc& scene, const ImportBudget& budget) {
                     if (!is_finite(p)) throw InputError(s.file + ": a vertex is not finite once placed in the scene");
                 }
                 for (Vec3& n : mesh->normals) n = place.vector(n);
+                for (size_t i = 0; i + 3 < mesh->tangents.size(); i += 4) {
+                    const Vec3 t = place.vector({mesh->tangents[i], mesh->tangents[i + 1], mesh->tangents[i + 2]});
+                    mesh->tangents[i] = t.x, mesh->tangents[i + 1] = t.y, mesh->tangents[i + 2] = t.z;
+                }
                 s.mesh = std::move(mesh);
             }
             if (!instances->meshes.empty()) s.instances = std::move(instances);
@@ -297,6 +314,9 @@ void resolve_imports(SceneDesc& scene, const ImportBudget& budget) {
         if (s.mesh) lit = emits(*s.mesh);
         if (s.instances)
             for (const InstancedMesh& im : s.instances->meshes) lit = lit || emits(*im.mesh);
+        // A scene file's own shape of an emissive material.
+        if (!s.mesh && !s.instances && s.material >= 0 && scene.materials[static_cast<size_t>(s.material)].emits())
+            lit = true;
     }
     if (!lit)
         throw InputError(scene.source + ": the scene has no light: no light in \"lights\", none in its imported files, "

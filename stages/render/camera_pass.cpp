@@ -105,21 +105,28 @@ struct PixelTracer {
             }
             if (m.type == MaterialType::Diffuse) {
                 Vec3 ns = toward ? hit.shading_normal : -hit.shading_normal;
-                store_visible_point(pixel, hit.position, hit.t, nf, ns, beta * albedo_at(m, hit), leg_ns, specular, rng);
+                const Vec3 nm = m.normal_texture ? shading_normal_facing(m, hit, d) : ns;
+                store_visible_point(pixel, hit.position, hit.t, nf, ns, nm, beta * albedo_at(m, hit), leg_ns, specular, rng);
                 return;
             }
             direct_done = false;
-            if (m.glossy == GlossyUse::Gather) {
+            bsdf::Bsdf b;  // GGX: the BSDF at the hit (textures applied)
+            GlossyUse use = GlossyUse::None;
+            if (m.glossy != GlossyUse::None) {
+                b = bsdf_at(m, hit);
+                use = glossy_use_at(m, b);
+            }
+            if (use == GlossyUse::Gather) {
                 Vec3 ns = toward ? hit.shading_normal : -hit.shading_normal;
-                store_glossy_point(hit, bsdf_at(m, hit), nf, ns, d, beta, leg_ns, specular, rng);
+                const Vec3 nm = m.normal_texture ? shading_normal_facing(m, hit, d) : ns;
+                store_glossy_point(hit, b, nf, ns, nm, d, beta, leg_ns, specular, rng);
                 return;
             }
             Vec3 w;
-            if (m.glossy == GlossyUse::Follow) {
+            if (use == GlossyUse::Follow) {
                 // Direct light here (f(wo, wi) |cos|), on the outside of a surface with an
                 // inside; then on along a sampled direction, counted as a bounce.
-                const bsdf::Bsdf b = bsdf_at(m, hit);
-                const Vec3 n_out = frame_normal(b, hit, d, inside);
+                const Vec3 n_out = frame_normal(m, b, hit, d, inside);
                 const Vec3 nf_out = has_inside(b) && inside ? -nf : nf;
                 const LocalFrame frame(n_out);
                 const Vec3 wo = frame.local(-d);
@@ -252,9 +259,9 @@ struct PixelTracer {
     }
 
     // nf: the geometric normal facing the path (ray offsets, side tests); ns: the shading
-    // normal on the same side (cosines, gathering).
-    void store_visible_point(size_t pixel, Vec3 p, float hit_t, Vec3 nf, Vec3 ns, Vec3 albedo_beta, double leg_ns,
-                             int specular, Rng& rng) {
+    // normal on the same side (gathering); nm: ns with the material's normal map (the BRDF's cosines).
+    void store_visible_point(size_t pixel, Vec3 p, float hit_t, Vec3 nf, Vec3 ns, Vec3 nm, Vec3 albedo_beta,
+                             double leg_ns, int specular, Rng& rng) {
         const RenderDesc& settings = ctx.render;
         const bool tof = settings.camera_tof;
         const double back_ns = tof ? leg_ns : 0.0;
@@ -266,7 +273,7 @@ struct PixelTracer {
             float* amb = &buffer.ambient[local * 3];
             amb[0] += a.x; amb[1] += a.y; amb[2] += a.z;
         }
-        direct_light(p, hit_t, nf, ns, back_ns, rng, [&](Vec3) { return f; });
+        direct_light(p, hit_t, nf, nm, back_ns, rng, [&](Vec3) { return f; });
     }
 
     // Direct light at p: one shadow ray per light, arriving after the light-to-point length;
@@ -298,23 +305,24 @@ struct PixelTracer {
 
     // A visible point on a GGX surface that gathers (docs/materials.md): the throughput and the
     // BSDF at the point, evaluated for each light sample and, in the gather, for each photon.
-    void store_glossy_point(const SurfaceHit& hit, const bsdf::Bsdf& b, Vec3 nf, Vec3 ns, Vec3 d, Vec3 beta,
-                            double leg_ns, int specular, Rng& rng) {
+    void store_glossy_point(const SurfaceHit& hit, const bsdf::Bsdf& b, Vec3 nf, Vec3 ns, Vec3 nm, Vec3 d,
+                            Vec3 beta, double leg_ns, int specular, Rng& rng) {
         const RenderDesc& settings = ctx.render;
         const double back_ns = settings.camera_tof ? leg_ns : 0.0;
         vp = VisiblePoint{hit.position, ns, beta, back_ns, static_cast<uint32_t>(settings.max_depth - specular)};
         vp.glossy = true;
         vp.bsdf = b;
         vp.wo = -d;
+        vp.bsdf_normal = nm;
         has_visible_point = true;
         if (!buffer.ambient.empty()) {
             Vec3 a = beta * b.base * settings.ambient;
             float* amb = &buffer.ambient[local * 3];
             amb[0] += a.x; amb[1] += a.y; amb[2] += a.z;
         }
-        const LocalFrame frame(ns);
+        const LocalFrame frame(nm);
         const Vec3 wo = frame.local(-d);
-        direct_light(hit.position, hit.t, nf, ns, back_ns, rng,
+        direct_light(hit.position, hit.t, nf, nm, back_ns, rng,
                      [&](Vec3 wi) { return beta * bsdf::eval(b, wo, frame.local(wi)); });
     }
 };

@@ -98,13 +98,14 @@ struct PhotonPath {
                 if (q <= 0 || (q < 1 && rng.uniform() >= q)) return;
                 flux = flux * albedo * (1.0f / q);
                 // Scatter about the shading normal; a direction below the true surface ends the path.
-                d = sample_cosine_hemisphere(ns, rng.uniform(), rng.uniform());
+                const Vec3 nm = m.normal_texture ? shading_normal_facing(m, hit, d) : ns;
+                d = sample_cosine_hemisphere(nm, rng.uniform(), rng.uniform());
                 if (dot(d, nf) <= 0) return;
                 o = hit.position + nf * ray_epsilon(hit.position, hit.t);
             } else if (m.glossy != GlossyUse::None) {
                 // A GGX surface: a record where visible points may gather, then a sampled bounce
                 // (importance transport), with Russian roulette as at specular vertices.
-                if (m.glossy == GlossyUse::Gather && (depth >= 2 || e.direct_by_photons) && !early(t))
+                if (glossy_use_at(m, hit) == GlossyUse::Gather && (depth >= 2 || e.direct_by_photons) && !early(t))
                     store(hit.position, flux, toward ? hit.shading_normal : -hit.shading_normal, d, depth, t);
                 const Vec3 w = follow_glossy(m, hit, o, d, inside, inside_ior, rng, bsdf::Transport::Importance);
                 flux *= w;

@@ -74,7 +74,7 @@ uint32_t gather_surface_at(const RenderContext& ctx, const VisiblePoint& vp, con
         });
     }
     // GGX: f(wo, wi) for each photon's incoming direction, in the point's shading frame.
-    const LocalFrame frame(vp.normal);
+    const LocalFrame frame(vp.bsdf_normal);
     const Vec3 wo = frame.local(vp.wo);
     return gather_with(ctx, vp, photons, photons_emitted, pixel, buffer, [&](float k) {
         const Vec3 w = vp.weight * k;

@@ -26,6 +26,7 @@ struct VisiblePoint {
     bool glossy = false;  // a GGX point: each photon weighs f(wo, its incoming direction)
     bsdf::Bsdf bsdf;      // GGX: the BSDF at the point (textures applied)
     Vec3 wo;              // GGX: unit, towards the camera
+    Vec3 bsdf_normal;     // GGX: the BSDF frame's +z, `normal` with the material's normal map
 };
 
 // Adds `photons`' estimate at `vp` to pixel `pixel` of `buffer` (flux / (pi R^2 emitted)), through

@@ -23,12 +23,18 @@ struct ModelMaterial {
     Vec3 emission;             // W sr^-1 m^-2
     std::string albedo_image;  // texture file name beside the model, or empty
     bool double_sided = false;
+    // glTF only. The defaults write the matte material below (no specular layer).
+    float metallic = 0, roughness = 1, specular = 0;
+    std::string metallic_roughness_image;  // linear: G roughness, B metallic
+    std::string normal_image;              // tangent-space normal map
+    float normal_scale = 1;
 };
 
 // Triangles (counter-clockwise from the front) with optional per-vertex normals and UVs.
 struct ModelMesh {
     std::vector<Vec3> positions, normals;
     std::vector<float> uvs;  // glTF convention: v = 0 at the image's top
+    std::vector<float> tangents;  // glTF only: 4 per vertex (xyz, handedness w), or empty
     std::vector<uint32_t> indices;
     std::vector<int> tri_material;
 
@@ -119,6 +125,12 @@ inline void write_gltf(const std::string& path, const ModelMesh& m, const std::v
     accessors.push_back({{"bufferView", nv}, {"componentType", 5126}, {"count", n}, {"type", "VEC3"}});
     size_t tv = view(append(m.uvs.data(), n * 8), n * 8);
     accessors.push_back({{"bufferView", tv}, {"componentType", 5126}, {"count", n}, {"type", "VEC2"}});
+    json attributes = {{"POSITION", 0}, {"NORMAL", 1}, {"TEXCOORD_0", 2}};
+    if (!m.tangents.empty()) {
+        size_t gv = view(append(m.tangents.data(), n * 16), n * 16);
+        accessors.push_back({{"bufferView", gv}, {"componentType", 5126}, {"count", n}, {"type", "VEC4"}});
+        attributes["TANGENT"] = accessors.size() - 1;
+    }
     for (size_t mi = 0; mi < mats.size(); ++mi) {
         std::vector<uint32_t> idx;
         for (size_t t = 0; t < m.tri_material.size(); ++t)
@@ -130,31 +142,37 @@ inline void write_gltf(const std::string& path, const ModelMesh& m, const std::v
         // a scene file's diffuse material.
         json jm = {{"name", mat.name},
                    {"pbrMetallicRoughness", {{"baseColorFactor", {mat.albedo.x, mat.albedo.y, mat.albedo.z, 1.0}},
-                                             {"metallicFactor", 0.0}, {"roughnessFactor", 1.0}}},
+                                             {"metallicFactor", mat.metallic}, {"roughnessFactor", mat.roughness}}},
                    {"doubleSided", mat.double_sided},
-                   {"extensions", {{"KHR_materials_specular", {{"specularFactor", 0.0}}}}}};
+                   {"extensions", {{"KHR_materials_specular", {{"specularFactor", mat.specular}}}}}};
         if (!is_black(mat.emission)) {
             float s = max_component(mat.emission);
             jm["emissiveFactor"] = {mat.emission.x / s, mat.emission.y / s, mat.emission.z / s};
             jm["extensions"]["KHR_materials_emissive_strength"] = {{"emissiveStrength", s}};
         }
-        if (!mat.albedo_image.empty()) {
+        auto texture = [&](const std::string& image) {
             if (binary) {  // a .glb carries its images in its buffer
-                std::ifstream in((std::filesystem::path(path).parent_path() / mat.albedo_image).string(), std::ios::binary);
+                std::ifstream in((std::filesystem::path(path).parent_path() / image).string(), std::ios::binary);
                 std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
                 size_t iv = view(append(bytes.data(), bytes.size()), bytes.size());
                 images.push_back({{"bufferView", iv}, {"mimeType", "image/png"}});
             } else {
-                images.push_back({{"uri", mat.albedo_image}});
+                images.push_back({{"uri", image}});
             }
             textures.push_back({{"source", images.size() - 1}});
-            jm["pbrMetallicRoughness"]["baseColorTexture"] = {{"index", textures.size() - 1}};
-        }
+            return textures.size() - 1;
+        };
+        if (!mat.albedo_image.empty())
+            jm["pbrMetallicRoughness"]["baseColorTexture"] = {{"index", texture(mat.albedo_image)}};
+        if (!mat.metallic_roughness_image.empty())
+            jm["pbrMetallicRoughness"]["metallicRoughnessTexture"] = {{"index", texture(mat.metallic_roughness_image)}};
+        if (!mat.normal_image.empty())
+            jm["normalTexture"] = {{"index", texture(mat.normal_image)}, {"scale", mat.normal_scale}};
         materials.push_back(jm);
         if (idx.empty()) continue;
         size_t iv = view(append(idx.data(), idx.size() * 4), idx.size() * 4);
         accessors.push_back({{"bufferView", iv}, {"componentType", 5125}, {"count", idx.size()}, {"type", "SCALAR"}});
-        prims.push_back({{"attributes", {{"POSITION", 0}, {"NORMAL", 1}, {"TEXCOORD_0", 2}}},
+        prims.push_back({{"attributes", attributes},
                          {"indices", accessors.size() - 1}, {"material", mi}});
     }
     j["meshes"] = json::array({{{"primitives", prims}}});

@@ -107,7 +107,7 @@ TEST(SettingsFingerprint, EveryFieldThatDecidesPixelsChangesIt) {
                                             "shapes[].file", "textures[].file",  "time.fps",
                                             "shapes[].first_light", "shapes[].light_count"};
     EXPECT_EQ(same, expected);
-    EXPECT_EQ(changed, 80);  // every leaf of every struct was tried (71, and 9 GGX material fields)
+    EXPECT_EQ(changed, 82);  // every leaf of every struct was tried (71, 9 GGX material fields, 2 normal map)
 }
 
 TEST(SettingsFingerprint, SectionsAndStrategyChangeIt) {
