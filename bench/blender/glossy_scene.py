@@ -9,9 +9,8 @@
 # 5 cm above the floor). The glass scene is lit by a 1 x 1 m
 # emissive quad 3 m up (Emission shader, strength 20) rather than the sun: Cycles cannot carry a
 # parallel sun's light through rough glass to the floor, photons can.
-# Scene (Blender's Z up, metres): a 6 x 6 m floor (Principled, base 0.5, specular 0: a diffuse
-# base alone in the exported file; with LAMBERT_FLOOR=1 in the environment Cycles gets a Diffuse
-# BSDF instead), a 1 m cube standing on it turned 30 degrees
+# Scene (Blender's Z up, metres): a 6 x 6 m floor (Principled, base 0.5, specular 0: a Lambertian
+# base alone in the exported file; Cycles gets a Diffuse BSDF), a 1 m cube standing on it turned 30 degrees
 # (its Principled distribution set to single-scattering GGX in Cycles, as slowlight's), a 3 W/m^2 sun 45 degrees high, a camera 3.5 m away, 128 x 96.
 # Cycles renders the cube's Principled BSDF itself. Writes OUT_DIR/glossy_KIND.glb,
 # OUT_DIR/glossy_KIND_cycles_seedN.exr and OUT_DIR/glossy_KIND_regions.json.
@@ -90,10 +89,8 @@ regions = {
 with open(os.path.join(out_dir, stem + "_regions.json"), "w") as f:
     json.dump({"width": W, "height": H, "regions": regions}, f, indent=1)
 
-# The floor stays Principled (specular 0: Burley's diffuse alone, which slowlight's
-# metallic-roughness base draws too). LAMBERT_FLOOR=1 in the environment swaps it for a Diffuse
-# BSDF of its colour, as the references before 2026-12-03's principled branch did.
-if os.environ.get("LAMBERT_FLOOR"):
-    sc.swap_to_diffuse(["floor"])
+# Principled v1's diffuse is Burley's, not Lambert's: the floor is swapped for a Diffuse BSDF of its
+# colour (the exported file keeps it Principled with no specular layer: a Lambertian base).
+sc.swap_to_diffuse(["floor"])
 sc.render_cycles(out_dir, stem, samples, seeds)
 print(stem + ": wrote", out_dir)

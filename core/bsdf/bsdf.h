@@ -192,11 +192,14 @@ inline float burley(float cos_o, float cos_i, float cos_oi, float roughness) {
 // layer's share above, the energy-conserving share the layer leaves (Kelemen & Szirmay-Kalos
 // 2001). With that cap a white base's albedo is at most E_layer(o) + 1 - S(o) <= 1 (+0.005 where
 // S falls below E; tests/bsdf). Symmetric in o and i: reciprocal. For Blender's default layer
-// the cap does not bite below a base of ~0.8 (roughness 0.5).
+// the cap does not bite below a base of ~0.6 (roughness 0.5). A material without a layer
+// (specular 0) is Lambertian: what glTF means, and what the OBJ/JSON diffuse surfaces are.
 inline Vec3 mr_diffuse(const Bsdf& b, Vec3 wo, Vec3 wi) {
     const float cap = (1 - layer_share(b, wo.z, b.ior)) * (1 - layer_share(b, wi.z, b.ior)) /
                       std::max(1e-6f, 1 - layer_average(b));
-    const float shape = burley(wo.z, wi.z, dot(wo, wi), std::sqrt(b.alpha));
+    // Without a layer (specular 0) the surface is the Lambertian one glTF means (and the cap is 1).
+    const bool layered = b.specular * max_component(b.specular_color) > 0;
+    const float shape = layered ? burley(wo.z, wi.z, dot(wo, wi), std::sqrt(b.alpha)) : 1.0f;
     return vmin(b.base * shape, Vec3(cap));
 }
 

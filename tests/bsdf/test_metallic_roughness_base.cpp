@@ -82,6 +82,19 @@ TEST(MetallicRoughnessBase, BaseIsUndimmedAsInCyclesAwayFromGrazing) {
     EXPECT_LT(diffuse, 0.6f * burley_2012(w, w, 0.5f) / kPi);
 }
 
+// Without a layer (specular 0) the base is the Lambertian glTF defines: base / pi exactly.
+TEST(MetallicRoughnessBase, WithoutALayerTheBaseIsLambertian) {
+    bsdf::Bsdf b = blender_default(Vec3(0.7f, 0.5f, 0.3f));
+    b.specular = 0;
+    b = bsdf::cache_layer_averages(b);
+    for (float o : {0.0f, 45.0f, 80.0f, 89.0f})
+        for (float i : {0.0f, 60.0f, 85.0f}) {
+            const Vec3 f = bsdf::eval(b, at_angle(o), at_angle(i, 1.0f));
+            EXPECT_FLOAT_EQ(f.x, 0.7f / kPi);
+            EXPECT_FLOAT_EQ(f.z, 0.3f / kPi);
+        }
+}
+
 // The directional albedo by sampling (the mean of the sample weights).
 double albedo(const bsdf::Bsdf& b, Vec3 wo, int n, uint64_t seed) {
     std::mt19937_64 rng(seed);
