@@ -190,8 +190,9 @@ inline float burley(float cos_o, float cos_i, float cos_oi, float roughness) {
 // as Blender's Principled BSDF (Cycles 3.4, v1) adds it under its specular layer: undimmed by the
 // layer, with Burley's shape; but never more than (1 - S(o))(1 - S(i)) / (1 - average S), S the
 // layer's share above, the energy-conserving share the layer leaves (Kelemen & Szirmay-Kalos
-// 2001). With that cap a white base's albedo is at most E_layer(o) + 1 - S(o) <= 1 (+0.005 where
-// S falls below E; tests/bsdf). Symmetric in o and i: reciprocal. For Blender's default layer
+// 2001). With that cap a white base's albedo is at most E_layer(o) + 1 - S(o) <= 1 wherever S
+// stays above the layer's own albedo E (tests/bsdf: the white furnaces). Symmetric in o and i:
+// reciprocal. For Blender's default layer
 // the cap does not bite below a base of ~0.6 (roughness 0.5). A material without a layer
 // (specular 0) is Lambertian: what glTF means, and what the OBJ/JSON diffuse surfaces are.
 inline Vec3 mr_diffuse(const Bsdf& b, Vec3 wo, Vec3 wi) {
