@@ -1,7 +1,7 @@
 # Builds the thin-wall scene in Blender, exports it with the stock glTF exporter at its default
 # settings, and renders it with Cycles for slowlight's comparison (bench/blender/README.md).
 #
-#   blender -b --factory-startup -P bench/blender/thin_wall_scene.py -- OUT_DIR [SAMPLES] [SEED ...]
+#   blender -b --factory-startup -P bench/blender/thin_wall_scene.py -- [principled] OUT_DIR [SAMPLES] [SEED ...]
 #
 # Scene (Blender's Z up, metres): a 6 x 6 m floor, a zero-thickness sheet wall (one quad, x = 0,
 # 3 m long, 1 m tall) standing on it, a 3 W/m^2 sun at 45 degrees from the +x side (the floor's
@@ -19,6 +19,10 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import scene_common as sc  # noqa: E402
 
 argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+# "principled" first: Cycles renders the Principled BSDF itself (what a Blender user sees), into
+# OUT_DIR/thin_wall_principled_cycles_seedN.exr; without it the surfaces are swapped for Diffuse BSDFs.
+keep_principled = bool(argv) and argv[0] == "principled"
+argv = argv[1:] if keep_principled else argv
 out_dir = os.path.abspath(argv[0] if argv else "out")
 samples = int(argv[1]) if len(argv) > 1 else 4096
 seeds = [int(s) for s in argv[2:]] or [1, 2]
@@ -57,6 +61,7 @@ regions = {
 with open(os.path.join(out_dir, "thin_wall_regions.json"), "w") as f:
     json.dump({"width": W, "height": H, "foot_x": foot_x, "regions": regions}, f, indent=1)
 
-sc.swap_to_diffuse()
-sc.render_cycles(out_dir, "thin_wall", samples, seeds)
+if not keep_principled:
+    sc.swap_to_diffuse()
+sc.render_cycles(out_dir, "thin_wall_principled" if keep_principled else "thin_wall", samples, seeds)
 print("thin_wall: wrote", out_dir)

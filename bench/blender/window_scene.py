@@ -3,7 +3,7 @@
 # around the opening (a visible point on the wall beside it has part of its gather disc over
 # the hole, where no photon lands) is measured against it (bench/blender/README.md).
 #
-#   blender -b --factory-startup -P bench/blender/window_scene.py -- OUT_DIR [SAMPLES] [SEED ...]
+#   blender -b --factory-startup -P bench/blender/window_scene.py -- [principled] OUT_DIR [SAMPLES] [SEED ...]
 #
 # Scene (Z up, metres): a 4 x 3 x 2.5 m room of zero-thickness quads (Principled, base colour
 # 0.6); in the wall y = 1.5 a 1 x 1 m opening (x in (-0.5, 0.5), z in (0.8, 1.8)); a 3 W/m^2
@@ -19,6 +19,10 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import scene_common as sc  # noqa: E402
 
 argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+# "principled" first: Cycles renders the Principled BSDF itself (what a Blender user sees), into
+# OUT_DIR/window_principled_cycles_seedN.exr; without it the surfaces are swapped for Diffuse BSDFs.
+keep_principled = bool(argv) and argv[0] == "principled"
+argv = argv[1:] if keep_principled else argv
 out_dir = os.path.abspath(argv[0] if argv else "out")
 samples = int(argv[1]) if len(argv) > 1 else 2048
 seeds = [int(s) for s in argv[2:]] or [1, 2]
@@ -63,6 +67,7 @@ regions = {
 with open(os.path.join(out_dir, "window_regions.json"), "w") as f:
     json.dump({"width": W, "height": H, "opening_px": [ax, bx, ay, by], "regions": regions}, f, indent=1)
 
-sc.swap_to_diffuse()
-sc.render_cycles(out_dir, "window", samples, seeds)
+if not keep_principled:
+    sc.swap_to_diffuse()
+sc.render_cycles(out_dir, "window_principled" if keep_principled else "window", samples, seeds)
 print("window: wrote", out_dir)

@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <utility>
 
 #include "core/bsdf/fresnel.h"
 #include "core/bsdf/ggx.h"
@@ -38,6 +39,10 @@ struct Bsdf {
     float specular = 1;      // metallic-roughness: scales the dielectric reflectance (glTF specularFactor)
     Vec3 specular_color{1};  // metallic-roughness: tints it (glTF specularColorFactor)
     float transmission = 0;  // metallic-roughness: the share of the dielectric base that transmits
+    // Metallic-roughness: the cosine-weighted hemispherical average of the layer's share
+    // (layer_share) from outside and from inside, cached by cache_layer_averages for alpha
+    // layer_avg_alpha (else computed when needed). Depends on ior, specular, its colour and alpha.
+    float layer_avg_out = -1, layer_avg_in = -1, layer_avg_alpha = -1;
 };
 
 struct Sample {
@@ -115,6 +120,90 @@ inline Vec3 mr_specular_fresnel(const Bsdf& b, float cos_h, float eta) {
     return metal * b.metallic + diel * (1 - b.metallic);
 }
 
+// The dielectric layer's reflectance at cos (its largest channel): the share of the light it
+// keeps from the diffuse base, arriving or leaving at that angle.
+inline float layer_fresnel(const Bsdf& b, float cos, float eta) {
+    return max_component(vmin(b.specular_color * (b.specular * fresnel_dielectric(cos, eta)), Vec3(1)));
+}
+
+// What the rough layer takes from the diffuse base at cos: the smooth interface's reflectance,
+// but never read beyond the grazing cosine roughness^1.5 / 2. A rough layer's own albedo E(mu)
+// stays far below the smooth Fresnel curve near grazing (roughness 0.5 at 85 degrees: E 0.18,
+// F 0.60, single-scattering GGX measured by quadrature), and F at that clamped cosine follows E
+// from above (tests/bsdf: the white furnace).
+inline float layer_cutoff(const Bsdf& b) { return 0.5f * std::pow(b.alpha, 0.75f); }
+inline float layer_share(const Bsdf& b, float cos, float eta) {
+    return layer_fresnel(b, std::max(std::abs(cos), layer_cutoff(b)), eta);
+}
+
+// 2 int_0^1 layer_share(mu) mu dmu: constant below the cutoff mu_0 (and below a critical
+// cosine mu_c from inside, eta < 1: total reflection), smooth above, by 16-point Gauss-Legendre.
+inline float layer_share_average(const Bsdf& b, float eta) {
+    static constexpr double kX[8] = {0.0950125098376374, 0.2816035507792589, 0.4580167776572274, 0.6178762444026438,
+                                     0.7554044083550030, 0.8656312023878318, 0.9445750230732326, 0.9894009349916499};
+    static constexpr double kW[8] = {0.1894506104550685, 0.1826034150449236, 0.1691565193950025, 0.1495959888165767,
+                                     0.1246289712555339, 0.0951585116824928, 0.0622535239386479, 0.0271524594117541};
+    const double mu_0 = layer_cutoff(b);
+    const double mu_c = eta < 1 ? std::sqrt(1.0 - double(eta) * eta) : 0.0;
+    const double lo = std::min(1.0, std::max(mu_0, mu_c));
+    double sum = lo * lo * layer_share(b, static_cast<float>(mu_0), eta);
+    for (int i = 0; i < 8; ++i)
+        for (double sgn : {-1.0, 1.0}) {
+            const double mu = lo + (1 - lo) * 0.5 * (1 + sgn * kX[i]);  // [-1, 1] -> [lo, 1]
+            sum += kW[i] * 0.5 * (1 - lo) * 2 * mu * layer_share(b, static_cast<float>(mu), eta);
+        }
+    return static_cast<float>(sum);
+}
+
+// Caches both averages for the Bsdf's own alpha (eval recomputes them for any other alpha, as
+// a roughness texture would give).
+inline Bsdf cache_layer_averages(Bsdf b) {
+    if (b.kind == Kind::MetallicRoughness) {
+        b.layer_avg_out = layer_share_average(b, b.ior);
+        b.layer_avg_in = layer_share_average(b, 1 / b.ior);
+        b.layer_avg_alpha = b.alpha;
+    }
+    return b;
+}
+
+// For the side of index ratio eta = b.ior (the frame's +z: eval mirrors the frame and swaps
+// the two cached values for a wo inside).
+inline float layer_average(const Bsdf& b) {
+    return b.layer_avg_out >= 0 && b.layer_avg_alpha == b.alpha ? b.layer_avg_out : layer_share_average(b, b.ior);
+}
+
+// Burley's diffuse shape ("Physically Based Shading at Disney", 2012, in the form Cycles 3.4's
+// Principled v1 evaluates it, bsdf_principled_diffuse.h): darker than Lambert's towards grazing
+// for smooth surfaces, brighter (retro-reflection) for rough ones. Symmetric in o and i.
+inline float burley(float cos_o, float cos_i, float cos_oi, float roughness) {
+    auto schlick_weight = [](float c) {
+        const float m = std::clamp(1 - c, 0.0f, 1.0f), m2 = m * m;
+        return m2 * m2 * m;
+    };
+    const float fo = schlick_weight(cos_o), fi = schlick_weight(cos_i);
+    const float rr = roughness * (1 + cos_oi);  // 2 roughness cos^2 of the half angle
+    return (1 - 0.5f * fo) * (1 - 0.5f * fi) + rr * (fo + fi + fo * fi * (rr - 1));
+}
+
+// The diffuse base of metallic-roughness, f without the 1/pi and the (1 - metallic)
+// (1 - transmission) weight, per channel (docs/materials.md, "The diffuse base"): the base colour
+// as Blender's Principled BSDF (Cycles 3.4, v1) adds it under its specular layer: undimmed by the
+// layer, with Burley's shape; but never more than (1 - S(o))(1 - S(i)) / (1 - average S), S the
+// layer's share above, the energy-conserving share the layer leaves (Kelemen & Szirmay-Kalos
+// 2001). With that cap a white base's albedo is at most E_layer(o) + 1 - S(o) <= 1 wherever S
+// stays above the layer's own albedo E (tests/bsdf: the white furnaces). Symmetric in o and i:
+// reciprocal. For Blender's default layer
+// the cap does not bite below a base of ~0.6 (roughness 0.5). A material without a layer
+// (specular 0) is Lambertian: what glTF means, and what the OBJ/JSON diffuse surfaces are.
+inline Vec3 mr_diffuse(const Bsdf& b, Vec3 wo, Vec3 wi) {
+    const float cap = (1 - layer_share(b, wo.z, b.ior)) * (1 - layer_share(b, wi.z, b.ior)) /
+                      std::max(1e-6f, 1 - layer_average(b));
+    // Without a layer (specular 0) the surface is the Lambertian one glTF means (and the cap is 1).
+    const bool layered = b.specular * max_component(b.specular_color) > 0;
+    const float shape = layered ? burley(wo.z, wi.z, dot(wo, wi), std::sqrt(b.alpha)) : 1.0f;
+    return vmin(b.base * shape, Vec3(cap));
+}
+
 inline LobeChoice mr_lobes(const Bsdf& b, Vec3 wo, float eta) {
     const float fo = dielectric_scale(b) * fresnel_dielectric(wo.z, eta);
     const float base = std::max(0.0f, luminance(b.base));
@@ -143,7 +232,10 @@ inline Vec3 eval(const Bsdf& b, Vec3 wo, Vec3 wi, Transport mode = Transport::Ra
         if (two_sided(b) || b.kind == Kind::MetallicRoughness) {
             // Metallic-roughness with transmission: the inside sees the interface of index 1/ior.
             Bsdf inv = b;
-            if (!two_sided(b)) inv.ior = 1 / b.ior;
+            if (!two_sided(b)) {
+                inv.ior = 1 / b.ior;
+                std::swap(inv.layer_avg_out, inv.layer_avg_in);
+            }
             wo.z = -wo.z;
             wi.z = -wi.z;
             return eval(inv, wo, wi, mode);
@@ -177,10 +269,9 @@ inline Vec3 eval(const Bsdf& b, Vec3 wo, Vec3 wi, Transport mode = Transport::Ra
         if (wi.z > 0) {
             const float lobe = ggx_reflection(g, wo, wi, wm);
             Vec3 f = lobe == 0 ? Vec3(0) : mr_specular_fresnel(b, dot(wo, wm), b.ior) * lobe;
-            const float s = dielectric_scale(b);
-            const float kd = (1 - b.metallic) * (1 - b.transmission) * (1 - s * fresnel_dielectric(wo.z, b.ior)) *
-                             (1 - s * fresnel_dielectric(wi.z, b.ior));
-            return f + b.base * (kd / kPi);
+            const float kd = (1 - b.metallic) * (1 - b.transmission);
+            if (kd <= 0) return f;
+            return f + mr_diffuse(b, wo, wi) * (kd / kPi);
         }
         if (b.transmission <= 0) return Vec3(0);
         if (!refraction_half_vector(wo, wi, b.ior, wm)) return Vec3(0);

@@ -51,13 +51,28 @@ double conductor_f(double f0, double roughness, Vec3 n, Vec3 wo, Vec3 wi) {
     const double lobe = ggx_lobe(roughness * roughness, n, wo, wi, c);
     return lobe * schlick(f0, c);
 }
-// glTF's metallic-roughness with metallic 0: the dielectric GGX layer over the Lambertian base,
-// the base weighed by (1 - F(theta_o))(1 - F(theta_i)).
+// glTF's metallic-roughness with metallic 0, as Blender's Principled v1 draws it: the dielectric
+// GGX layer added over Burley's diffuse base (its 2012 form), the base capped by the share the
+// layer leaves, (1 - S(o))(1 - S(i)) / (1 - average S), S = F read no closer to grazing than
+// roughness^1.5 / 2 (docs/materials.md); the average here by 20000 midpoints.
 double plastic_f(double base, double roughness, double ior, Vec3 n, Vec3 wo, Vec3 wi) {
     double c = 0;
     const double lobe = ggx_lobe(roughness * roughness, n, wo, wi, c);
     const double spec = lobe > 0 ? lobe * fresnel(c, ior) : 0;
-    return spec + base / M_PI * (1 - fresnel(dot(n, wo), ior)) * (1 - fresnel(dot(n, wi), ior));
+    const double co = dot(n, wo), ci = dot(n, wi);
+    const Vec3 h = normalize(wo + wi);
+    const double fd90 = 0.5 + 2 * roughness * dot(wi, h) * dot(wi, h);
+    const double burley = (1 + (fd90 - 1) * std::pow(1 - ci, 5)) * (1 + (fd90 - 1) * std::pow(1 - co, 5));
+    const double mu0 = 0.5 * std::pow(roughness, 1.5);
+    auto share = [&](double mu) { return fresnel(std::max(mu, mu0), ior); };
+    double avg = 0;
+    const int m = 20000;
+    for (int k = 0; k < m; ++k) {
+        const double mu = (k + 0.5) / m;
+        avg += 2 * mu * share(mu) / m;
+    }
+    const double cap = (1 - share(co)) * (1 - share(ci)) / (1 - avg);
+    return spec + std::min(base * burley, cap) / M_PI;
 }
 
 // --- scenes -----------------------------------------------------------------------------------
@@ -133,7 +148,7 @@ TEST(Glossy, PointLightOnRoughMetalIsDFGOverFourCosCos) {
     }
 }
 
-TEST(Glossy, PointLightOnPlasticIsSpecularLayerPlusCoupledDiffuse) {
+TEST(Glossy, PointLightOnPlasticIsSpecularLayerPlusCappedBurleyBase) {
     MaterialDesc m;
     m.type = MaterialType::MetallicRoughness;
     m.albedo = Vec3(0.5f);
