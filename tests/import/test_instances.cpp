@@ -13,6 +13,7 @@
 #include "core/import/mesh_instances.h"
 #include "core/import/resolve_imports.h"
 #include "core/scene_geometry.h"
+#include "stages/output/png_io.h"
 #include "tests/common/temp_dir.h"
 #include "tests/import/model_writers.h"
 #include "tests/render/render_helpers.h"
@@ -124,8 +125,13 @@ TEST(Instances, OneFileNamedByManyEntriesIsHeldOnce) {
 
 // Two boxes and a rotated, non-uniformly scaled, mirrored third in the Cornell box: once as one
 // mesh under three nodes (instances), once as three meshes (baked into the scene): the same image.
-TEST(Instances, InstancedCopiesRenderAsTheSameCopiesWrittenOut) {
+void expect_instanced_renders_as_written_out(const ModelMaterial& material, const std::string& image) {
     TempDir dir;
+    if (!image.empty()) {  // a constant tilted normal map, (0.30, 0.40, 0.87) in tangent space
+        std::vector<uint8_t> px;
+        for (int i = 0; i < 16; ++i) px.insert(px.end(), {166, 179, 238});
+        write_png(dir.file(image), 4, 4, px.data());
+    }
     ModelMesh box;
     box.box({-0.2f, 0, -0.2f}, {0.2f, 0.5f, 0.2f}, 0);
     const json nodes = json::array(
@@ -134,7 +140,7 @@ TEST(Instances, InstancedCopiesRenderAsTheSameCopiesWrittenOut) {
          {{"translation", {0.0, 1.2, -0.5}}, {"scale", {-0.8, 0.5, 1.2}}}});  // mirrored: det < 0
     for (const char* name : {"instanced", "separate"}) {
         const std::string f = dir.file(std::string(name) + ".gltf");
-        write_gltf(f, box, {{"white", Vec3(0.73f)}}, false);
+        write_gltf(f, box, {material}, false);
         place_by_nodes(f, nodes, std::string(name) == "separate");
     }
     auto scene = [&](const std::string& file, uint64_t seed) {
@@ -164,6 +170,18 @@ TEST(Instances, InstancedCopiesRenderAsTheSameCopiesWrittenOut) {
     // the vertices), far below the noise (measured: 1.5e-8 against 0.24).
     EXPECT_LT(d, 0.01 * spread);
     EXPECT_NEAR(mean(a.steady), mean(b.steady), 0.002 * mean(b.steady));
+}
+
+TEST(Instances, InstancedCopiesRenderAsTheSameCopiesWrittenOut) {
+    expect_instanced_renders_as_written_out({"white", Vec3(0.73f)}, "");
+}
+
+// A normal map on copies: the tangent frame is made in the mesh's own space and placed with the
+// copy (rotated, scaled, mirrored), as it is when the copies are written out.
+TEST(Instances, NormalMappedCopiesRenderAsTheSameCopiesWrittenOut) {
+    ModelMaterial white("white", Vec3(0.73f));
+    white.normal_image = "tilt.png";
+    expect_instanced_renders_as_written_out(white, "tilt.png");
 }
 
 // An emissive panel (0.5 x 0.4 m, L = 10 W sr^-1 m^-2, one-sided) under three nodes, one of
