@@ -90,6 +90,8 @@ EmissiveTriangles::EmissiveTriangles(const SceneDesc& scene) : scene_(&scene) {
     if (!cdf_.empty()) cdf_.back() = 1;
 }
 
+uint64_t EmissiveTriangles::bytes_per_triangle() { return sizeof(Triangle) + 2 * sizeof(float) + sizeof(double); }
+
 EmitterPoint EmissiveTriangles::sample(float u1, float u2) const {
     size_t i = static_cast<size_t>(std::upper_bound(cdf_.begin(), cdf_.end(), u1) - cdf_.begin());
     i = std::min(i, tris_.size() - 1);

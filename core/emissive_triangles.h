@@ -26,6 +26,10 @@ public:
     size_t size() const { return cdf_.size(); }
     Vec3 power() const { return power_; }  // W, both faces of two-sided triangles included
 
+    // What one emissive triangle costs here (its record, its two table entries, and the weight
+    // it has while the table is built): the memory plan counts the placed ones with it.
+    static uint64_t bytes_per_triangle();
+
     // A point by power: u1 picks the triangle (and, rescaled, is reused with u2 to place the point).
     EmitterPoint sample(float u1, float u2) const;
 

@@ -1,5 +1,7 @@
 #include "pipeline/memory_plan.h"
 
+#include "core/emissive_triangles.h"
+
 #include "core/import/resolve_imports.h"
 
 #include <algorithm>
@@ -87,7 +89,7 @@ uint64_t section_buffer_bytes(const SceneDesc& scene, int sections, int ranks) {
 }
 
 std::vector<std::pair<const char*, uint64_t>> MemoryBaseline::terms() const {
-    return {{"program and libraries", program}, {"scene (meshes, BVH, textures)", scene},
+    return {{"program and libraries", program}, {"scene (meshes, BVH, textures, emitters)", scene},
             {"photon map (one pass)", photon_map}, {"volume photons (one pass)", volume_photons},
             {"frames on their way out", frames},  {"video encoder", encoder}};
 }
@@ -98,7 +100,10 @@ MemoryBaseline memory_baseline(const SceneDesc& scene, const RunOptions& options
     b.program = kProgramBytes;
     // Imported meshes and textures: their arrays, and Embree's copy and BVH (a fixed figure per
     // triangle, core/import/resolve_imports.cpp). The built-in shapes are a few hundred bytes.
-    b.scene = imported_mesh_bytes(scene) + imported_bvh_bytes(scene) + texture_bytes(scene);
+    // The emitters' table holds every placed emissive triangle in scene space: a mesh placed
+    // N times by instances costs its emissive triangles N times there.
+    b.scene = imported_mesh_bytes(scene) + imported_bvh_bytes(scene) + texture_bytes(scene) +
+              emissive_triangles(scene) * EmissiveTriangles::bytes_per_triangle();
 
     // One pass's photons: the pilot's records per path, 2% more for the pilot's own spread
     // (about 1% for 4096 paths), times this run's photons per pass.

@@ -13,6 +13,8 @@
 #include "core/import/mesh_instances.h"
 #include "core/import/resolve_imports.h"
 #include "core/scene_geometry.h"
+#include "config/run_options.h"
+#include "pipeline/memory_plan.h"
 #include "stages/output/png_io.h"
 #include "tests/common/temp_dir.h"
 #include "tests/import/model_writers.h"
@@ -211,6 +213,29 @@ TEST(Instances, AnEmissiveMeshPlacedThreeTimesIsThreeEmittersOfTheRightPower) {
         EXPECT_NEAR(p.normal.y, 1.0f, 1e-6f);
         EXPECT_NEAR(p.position.y, 1.0f, 1e-6f);
     }
+}
+
+// The emitters' table holds each placed emissive triangle in scene space: the memory plan counts
+// them per copy (2,000 copies of a lamp panel: 4,000 entries), not once per held mesh.
+TEST(Instances, EmissiveCopiesAreCountedInTheMemoryPlanPerCopy) {
+    TempDir dir;
+    ModelMesh panel;
+    panel.quad({0, 0, 0}, {0.5f, 0, 0}, {0, 0, -0.4f}, 0);
+    json nodes = json::array();
+    for (int k = 0; k < 2000; ++k) nodes.push_back({{"translation", {1.0 * (k % 50), 1.0, 1.0 * (k / 50)}}});
+    write_gltf(dir.file("lamps.gltf"), panel, {{"lamp", Vec3(0), Vec3(10)}}, false);
+    write_gltf(dir.file("grey.gltf"), panel, {{"grey", Vec3(0.5f)}}, false);
+    place_by_nodes(dir.file("lamps.gltf"), nodes, false);
+    place_by_nodes(dir.file("grey.gltf"), nodes, false);
+    SceneDesc lamps = lit_scene_with(ShapeType::Gltf, {dir.file("lamps.gltf")});
+    SceneDesc grey = lit_scene_with(ShapeType::Gltf, {dir.file("grey.gltf")});
+    resolve_imports(lamps);
+    resolve_imports(grey);
+    const RunOptions o;
+    const uint64_t extra = memory_baseline(lamps, o).scene - memory_baseline(grey, o).scene;
+    EXPECT_EQ(EmissiveTriangles(lamps).size(), 4000u);
+    EXPECT_EQ(extra, 4000 * EmissiveTriangles::bytes_per_triangle());
+    EXPECT_GE(EmissiveTriangles::bytes_per_triangle(), 5 * sizeof(Vec3));  // the record alone holds 5 vectors
 }
 
 // A closed box mirrored by its node: every face's front (and shading normal) still points out
