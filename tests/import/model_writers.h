@@ -214,9 +214,9 @@ inline void write_gltf(const std::string& path, const ModelMesh& m, const std::v
 }
 
 // The scene shape that imports a model file (its own materials: material -1).
-inline ShapeDesc model_shape(const std::string& file) {
+inline ShapeDesc model_shape(const std::string& file, ShapeType type = ShapeType::Mesh) {
     ShapeDesc sh;
-    sh.type = ShapeType::Mesh;
+    sh.type = type;
     sh.file = file;
     sh.material = -1;
     return sh;

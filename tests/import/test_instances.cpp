@@ -66,13 +66,7 @@ SceneDesc lit_scene_with(ShapeType type, const std::vector<std::string>& files) 
     l.position = {0, 5, 0};
     l.power = Vec3(10);
     s.lights.push_back(l);
-    for (const std::string& f : files) {
-        ShapeDesc sh;
-        sh.type = type;
-        sh.file = f;
-        sh.material = -1;
-        s.shapes.push_back(sh);
-    }
+    for (const std::string& f : files) s.shapes.push_back(model_shape(f, type));
     return s;
 }
 
@@ -151,11 +145,7 @@ void expect_instanced_renders_as_written_out(const ModelMaterial& material, cons
         s.shapes.erase(std::remove_if(s.shapes.begin(), s.shapes.end(),
                                       [](const ShapeDesc& sh) { return sh.type == ShapeType::Box; }),
                        s.shapes.end());
-        ShapeDesc sh;
-        sh.type = ShapeType::Gltf;
-        sh.file = file;
-        sh.material = -1;
-        s.shapes.push_back(sh);
+        s.shapes.push_back(model_shape(file, ShapeType::Gltf));
         return s;
     };
     const SceneDesc inst = with_imports(scene(dir.file("instanced.gltf"), 1));

@@ -19,11 +19,7 @@ namespace {
 SceneDesc box_with_floor(const std::string& gltf) {
     SceneDesc s = small_box(32, 4, 20000);
     s.shapes.erase(s.shapes.begin());
-    ShapeDesc sh;
-    sh.type = ShapeType::Gltf;
-    sh.file = gltf;
-    sh.material = -1;
-    s.shapes.push_back(sh);
+    s.shapes.push_back(model_shape(gltf, ShapeType::Gltf));
     return s;
 }
 
