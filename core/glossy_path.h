@@ -44,9 +44,6 @@ inline GlossyUse glossy_use_at(const SurfaceMaterial& m, const bsdf::Bsdf& b) {
     const float roughness = std::sqrt(b.alpha);  // alpha = roughness^2 above the floor kMinAlpha
     return metallic_roughness_use(b.metallic, roughness, b.transmission);
 }
-inline GlossyUse glossy_use_at(const SurfaceMaterial& m, const SurfaceHit& hit) {
-    return m.metallic_roughness_texture ? glossy_use_at(m, bsdf_at(m, hit)) : m.glossy;
-}
 
 // Whether the BSDF has an inside (rough glass, transmissive metallic-roughness): its frame's +z
 // is then the outside, known from the path's inside flag as for smooth glass.
@@ -62,10 +59,9 @@ inline Vec3 frame_normal(const SurfaceMaterial& m, const bsdf::Bsdf& b, const Su
 // Samples the BSDF for a path arriving along d (radiance for camera paths, importance for
 // photons) and moves the path on. Returns the throughput weight f |cos| / pdf; zero when the
 // draw is lost (GGX's single-scattering loss) or would leave through the wrong side of the true
-// (geometric) surface, and the path ends.
-inline Vec3 follow_glossy(const SurfaceMaterial& m, const SurfaceHit& hit, Vec3& o, Vec3& d, bool& inside,
-                          float& inside_ior, Rng& rng, bsdf::Transport mode) {
-    const bsdf::Bsdf b = bsdf_at(m, hit);
+// (geometric) surface, and the path ends. b: bsdf_at(m, hit), made once by the caller.
+inline Vec3 follow_glossy(const SurfaceMaterial& m, const bsdf::Bsdf& b, const SurfaceHit& hit, Vec3& o, Vec3& d,
+                          bool& inside, float& inside_ior, Rng& rng, bsdf::Transport mode) {
     const LocalFrame frame(frame_normal(m, b, hit, d, inside));
     const Vec3 wo = frame.local(-d);
     const float uc = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();

@@ -134,7 +134,7 @@ struct PixelTracer {
                     return beta * bsdf::eval(b, wo, frame.local(wi));
                 });
                 if (++specular >= settings.max_depth) return;
-                w = follow_glossy(m, hit, o, d, inside, inside_ior, rng, bsdf::Transport::Radiance);
+                w = follow_glossy(m, b, hit, o, d, inside, inside_ior, rng, bsdf::Transport::Radiance);
                 direct_done = dot(d, nf_out) > 0;
             } else {
                 if (++specular >= settings.max_depth) return;

@@ -105,9 +105,10 @@ struct PhotonPath {
             } else if (m.glossy != GlossyUse::None) {
                 // A GGX surface: a record where visible points may gather, then a sampled bounce
                 // (importance transport), with Russian roulette as at specular vertices.
-                if (glossy_use_at(m, hit) == GlossyUse::Gather && (depth >= 2 || e.direct_by_photons) && !early(t))
+                const bsdf::Bsdf b = bsdf_at(m, hit);  // textures looked up once for both uses
+                if (glossy_use_at(m, b) == GlossyUse::Gather && (depth >= 2 || e.direct_by_photons) && !early(t))
                     store(hit.position, flux, toward ? hit.shading_normal : -hit.shading_normal, d, depth, t);
-                const Vec3 w = follow_glossy(m, hit, o, d, inside, inside_ior, rng, bsdf::Transport::Importance);
+                const Vec3 w = follow_glossy(m, b, hit, o, d, inside, inside_ior, rng, bsdf::Transport::Importance);
                 flux *= w;
                 const float q = depth >= 3 ? std::min(1.0f, max_component(w)) : 1.0f;
                 if (q < 1 && q > 0) {
