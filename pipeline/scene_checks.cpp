@@ -8,6 +8,7 @@
 #include "core/import/mesh_data.h"
 #include "core/import/mesh_instances.h"
 #include "core/import/model_scene.h"
+#include "core/shape_triangles.h"
 #include "foundation/constants.h"
 #include "foundation/message_lines.h"
 #include "stages/render/render_context.h"
@@ -106,6 +107,20 @@ SceneFacts scene_facts(const RenderContext& ctx) {
             }
         }
     }
+    // Emissive surfaces (imported, or a scene file's quads and boxes): one light after the
+    // scene's own, sampled by power on an 8 x 8 grid of (u1, u2): the earliest arrival is that
+    // of the nearest of 64 points on them, a little later than the true earliest.
+    for (size_t li = ctx.scene.lights.size(); li < ctx.lights.count(); ++li)
+        for (const Visible& v : seen)
+            for (int s = 0; s < 64; ++s) {
+                DirectLightSample d;
+                if (!ctx.lights.sample_direct(li, v.p, v.n, (s % 8 + 0.5f) / 8, (s / 8 + 0.5f) / 8, d)) continue;
+                const double t = d.distance + (tof ? v.camera_leg : 0.0f);
+                first = std::min(first, t);
+                const float eps = ray_epsilon(v.p, d.distance);
+                if (!ctx.geometry.occluded(v.p + v.n * eps, d.to_light, 0, d.distance * (1 - 1e-4f)))
+                    last = std::max(last, t);
+            }
     if (first < 1e300) f.first_arrival_ns = first / kSpeedOfLight;
     if (last >= 0) f.last_direct_arrival_ns = last / kSpeedOfLight;
 
@@ -166,6 +181,16 @@ double emissive_watts(const SceneDesc& s, const ShapeDesc& shape) {
         return w;
     };
     double w = shape.mesh ? watts(*shape.mesh, nullptr) : 0;
+    if (!shape.mesh && !shape.instances && shape.type != ShapeType::Sphere && shape.material >= 0 &&
+        s.materials[static_cast<size_t>(shape.material)].emits()) {
+        // A scene file's quad or box of an emissive material: its triangles, as the emitters hold them.
+        const TriangleSoup soup = triangulate_shape(shape);
+        MeshData m;
+        m.positions = soup.vertices;
+        m.indices = soup.indices;
+        m.tri_material.assign(soup.indices.size() / 3, shape.material);
+        w = watts(m, nullptr);
+    }
     if (shape.instances)
         for (const InstancedMesh& im : shape.instances->meshes)
             for (const Affine& a : im.placements) w += watts(*im.mesh, &a);

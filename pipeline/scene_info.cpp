@@ -30,6 +30,12 @@ const char* light_type_name(LightType t) {
     return "light";
 }
 
+// An imported file by its name, a scene file's emissive quad or box by its place.
+std::string emitter_name(const ShapeDesc& sh, size_t i) {
+    if (!sh.file.empty()) return sh.file;
+    return "shapes[" + std::to_string(i) + "] (" + (sh.type == ShapeType::Box ? "box" : "quad") + ")";
+}
+
 std::string watts(double w) {
     char buf[64];
     std::snprintf(buf, sizeof buf, "%.4g W", w);
@@ -57,9 +63,9 @@ void print_light_powers(std::ostream& out, const SceneDesc& s, Vec3 size) {
         if (from[i]) out << " (from " << from[i]->file << ")";
         out << "\n";
     }
-    for (const ShapeDesc& sh : s.shapes)
-        if (const double w = emissive_watts(s, sh); w > 0) {
-            out << label << "emissive surfaces of " << sh.file << ": " << watts(w) << "\n";
+    for (size_t i = 0; i < s.shapes.size(); ++i)
+        if (const double w = emissive_watts(s, s.shapes[i]); w > 0) {
+            out << label << "emissive surfaces of " << emitter_name(s.shapes[i], i) << ": " << watts(w) << "\n";
             label = "            ";
         }
 }
@@ -208,8 +214,12 @@ nlohmann::json scene_info_json(const SceneDesc& s, const RunOptions& options) {
     }
     j["light_powers"] = powers;
     json emissive = json::array();
-    for (const ShapeDesc& sh : s.shapes)
-        if (const double w = emissive_watts(s, sh); w > 0) emissive.push_back({{"file", sh.file}, {"watts", w}});
+    for (size_t i = 0; i < s.shapes.size(); ++i)
+        if (const double w = emissive_watts(s, s.shapes[i]); w > 0) {
+            json e = {{"watts", w}};
+            if (s.shapes[i].file.empty()) e["shape"] = i; else e["file"] = s.shapes[i].file;
+            emissive.push_back(e);
+        }
     j["emissive_surfaces"] = emissive;
     j["warnings"] = scene_warnings(ctx, f);
 

@@ -237,6 +237,40 @@ TEST(SceneInfo, PrintsEveryLightsPowerInWatts) {
     EXPECT_NE(text.find("lights[1] sun: 2049 W/m^2, "), std::string::npos) << text;
 }
 
+// The Cornell box lit by its lamp drawn as an emissive quad (a material's `emission`) instead
+// of a quad light: info gives it the same power and its light the same arrivals (the emitter's
+// earliest is the nearest of 64 sampled points, so a little later, never earlier).
+TEST(SceneInfo, EmissiveQuadOfASceneFileHasPowerAndArrivals) {
+    ScratchDir dir;
+    auto arrivals = [](const std::string& text, double& first, double& last) {
+        const size_t a = text.find("arrives from ");
+        const size_t b = text.find("everything it lights by ");
+        if (a == std::string::npos || b == std::string::npos) return false;
+        first = std::stod(text.substr(a + 13));
+        last = std::stod(text.substr(b + 24));
+        return true;
+    };
+    std::string lamp_text, emitter_text;
+    info_warnings(dir, sample("cornell_box.json"), &lamp_text);
+    nlohmann::json s = box();
+    const nlohmann::json lamp = s["lights"][0];
+    s["materials"]["lamp"] = {{"type", "diffuse"}, {"albedo", {0, 0, 0}}, {"emission", lamp["radiance"]}};
+    s["shapes"].push_back({{"type", "quad"}, {"corner", lamp["corner"]}, {"edge1", lamp["edge1"]},
+                           {"edge2", lamp["edge2"]}, {"material", "lamp"}});
+    s.erase("lights");
+    info_warnings(dir, write_scene(dir, "emitter.json", s), &emitter_text);
+    const double watts = M_PI * (17 + 12 + 4) / 3.0 * 0.5 * 0.4;
+    char expected[80];
+    std::snprintf(expected, sizeof expected, "emissive surfaces of shapes[7] (quad): %.4g W", watts);
+    EXPECT_NE(emitter_text.find(expected), std::string::npos) << expected << "\n" << emitter_text;
+    double lamp_first = 0, lamp_last = 0, first = 0, last = 0;
+    ASSERT_TRUE(arrivals(lamp_text, lamp_first, lamp_last)) << lamp_text;
+    ASSERT_TRUE(arrivals(emitter_text, first, last)) << emitter_text;
+    EXPECT_GE(first, lamp_first - 0.005);
+    EXPECT_LT(first, lamp_first + 0.2);  // a grid cell of the 0.5 m x 0.4 m lamp is 6 cm (0.2 ns)
+    EXPECT_NEAR(last, lamp_last, 0.2);
+}
+
 TEST(SceneWarnings, LampsAndEmissiveSurfacesInDifferentUnits) {
     ScratchDir dir;
     // Consistent: a pi W panel and a point light of pi W (0.25 W/sr = 170.75 cd).
