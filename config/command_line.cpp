@@ -101,6 +101,16 @@ const Option kOptions[] = {
          else
              bad_value(f, "must be photometric or radiometric, got '" + printable(v) + "'");
      }},
+    {kRender | kInfo, "--gltf-principled", "", "P",
+     "glTF materials' diffuse base: energy_conserving (default) or blender3 (as Cycles 3.x)",
+     [](RunOptions& r, std::string_view f, std::string_view v) {
+         if (v == "energy_conserving")
+             r.gltf_principled = PrincipledBase::EnergyConserving;
+         else if (v == "blender3")
+             r.gltf_principled = PrincipledBase::Blender3;
+         else
+             bad_value(f, "must be energy_conserving or blender3, got '" + printable(v) + "'");
+     }},
     {kRender | kInfo, "--width", "", "W", "image width in pixels (camera.width)",
      [](RunOptions& r, std::string_view f, std::string_view v) {
          r.overrides.width = int_value(f, v, 1, limits::kMaxImageSide);

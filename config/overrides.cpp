@@ -65,4 +65,10 @@ void apply_gltf_light_units(SceneDesc& scene, std::optional<LightUnits> units) {
         if (s.type == ShapeType::Gltf && !s.light_units) s.light_units = units;
 }
 
+void apply_gltf_principled(SceneDesc& scene, std::optional<PrincipledBase> principled) {
+    if (!principled) return;
+    for (ShapeDesc& s : scene.shapes)
+        if (s.type == ShapeType::Gltf && s.material < 0 && !s.principled) s.principled = principled;
+}
+
 }  // namespace sl

@@ -19,6 +19,10 @@ void apply_overrides(SceneDesc& scene, const RenderOverrides& o);
 // Before resolve_imports, which reads the files.
 void apply_gltf_light_units(SceneDesc& scene, std::optional<LightUnits> units);
 
+// --gltf-principled: the diffuse base of every gltf shape that does not name its own
+// "principled" (nor a "material" of the scene's). Before resolve_imports.
+void apply_gltf_principled(SceneDesc& scene, std::optional<PrincipledBase> principled);
+
 // Parses an --emission value: "constant", "pulse" or "pulse:WIDTH_NS" (width_frames is left
 // for apply_overrides to check against the frame width). Throws "command line: --emission: ...".
 EmissionDesc parse_emission_option(const std::string& spec);

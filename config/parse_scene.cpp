@@ -28,6 +28,11 @@ namespace {
 
 constexpr size_t kMaxSceneFileBytes = size_t(64) << 20;  // a scene file is small; meshes are apart
 
+// "principled" (a gltf shape, a metallic_roughness material): how the diffuse base is drawn.
+PrincipledBase principled_choice(const JsonObject& o) {
+    return static_cast<PrincipledBase>(o.choice("principled", {"energy_conserving", "blender3"}));
+}
+
 // Turns checked JSON into a SceneDesc, converting lengths to meters on the way.
 class SceneParser {
 public:
@@ -230,6 +235,7 @@ private:
                     d.transmission = number_f(m, "transmission", unit, d.transmission);
                     if (d.transmission > 0 && d.ior == 1)
                         m.fail("ior", "must differ from 1 when the material transmits (an index of 1 is no interface)");
+                    if (m.has("principled")) d.principled = principled_choice(m);
                     break;
             }
             // Any surface may emit (W sr^-1 m^-2 from its front), as imported emissive materials do.
@@ -303,6 +309,14 @@ private:
                     d.rotate_deg = to_vec3(s, "rotate_deg", s.triple("rotate_deg", Range::any()));
                 if (d.type == ShapeType::Gltf && s.has("light_units"))
                     d.light_units = static_cast<LightUnits>(s.choice("light_units", {"photometric", "radiometric"}));
+                if (d.type == ShapeType::Gltf && s.has("principled")) {
+                    // It chooses how the file's own materials are drawn: an entry that names one
+                    // of the scene's materials uses that material's own "principled".
+                    if (s.has("material"))
+                        s.fail("principled", "applies to the file's own materials, and this entry names \"material\" "
+                                             "(give that material its own \"principled\")");
+                    d.principled = principled_choice(s);
+                }
                 break;
         }
         // A mesh or glTF file without "material" keeps its own materials.

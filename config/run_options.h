@@ -60,6 +60,9 @@ struct RunOptions {
     // --gltf-light-units: how glTF files read their lights' intensities, unless their scene entry
     // says (its "light_units"); applied before the files are read (pipeline/render_command.cpp).
     std::optional<LightUnits> gltf_light_units;
+    // --gltf-principled: how glTF files' metallic-roughness materials draw their diffuse base,
+    // unless their scene entry says (its "principled"); applied before the files are read.
+    std::optional<PrincipledBase> gltf_principled;
 };
 
 }  // namespace sl

@@ -32,6 +32,12 @@ struct CameraDesc {
 // evaluated by their BSDFs (core/bsdf/, built into core/material_table.h).
 enum class MaterialType { Diffuse, Mirror, Dielectric, Conductor, RoughDielectric, MetallicRoughness };
 
+// How metallic_roughness draws its diffuse base (docs/materials.md, "The diffuse base"):
+// EnergyConserving (the default) caps it so that a white base never returns more light than
+// arrives; Blender3 draws it as Blender 3.x's Cycles (Principled v1) does, uncapped, so that a
+// render matches Blender 3.x's own where Cycles gains energy.
+enum class PrincipledBase { EnergyConserving, Blender3 };
+
 struct MaterialDesc {
     std::string name;
     MaterialType type = MaterialType::Diffuse;
@@ -47,6 +53,7 @@ struct MaterialDesc {
     Vec3 specular_color{1.0f};  // metallic_roughness: tints it (glTF specularColorFactor)
     float transmission = 0;    // metallic_roughness: the share of the dielectric base that transmits
     int metallic_roughness_texture = -1;  // glTF: G scales roughness, B metallic (linear)
+    PrincipledBase principled = PrincipledBase::EnergyConserving;  // metallic_roughness's base
     // From imported files (glTF, OBJ/MTL); the scene JSON sets none of these.
     int albedo_texture = -1;    // index into SceneDesc::textures; multiplies albedo
     Vec3 emission;              // W sr^-1 m^-2: the surface is an area light
@@ -104,6 +111,9 @@ struct ShapeDesc {
     // gltf: the units of its lights' intensities; empty: the command line's
     // --gltf-light-units, else photometric (core/import/resolve_imports.cpp)
     std::optional<LightUnits> light_units;
+    // gltf: how its metallic-roughness materials draw their diffuse base; empty: the command
+    // line's --gltf-principled, else energy-conserving (core/import/resolve_imports.cpp)
+    std::optional<PrincipledBase> principled;
     // mesh, gltf: the lights the file brought, lights[first_light, first_light + light_count)
     // (filled by resolve_imports; for `info`'s per-file checks)
     int first_light = 0, light_count = 0;

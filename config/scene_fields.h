@@ -19,6 +19,7 @@ template <class F> void visit_fields(const MaterialDesc& m, F&& f) {
     f("ior", m.ior); f("roughness", m.roughness); f("complex_ior", m.complex_ior); f("eta", m.eta); f("k", m.k);
     f("metallic", m.metallic); f("specular", m.specular); f("specular_color", m.specular_color);
     f("transmission", m.transmission); f("metallic_roughness_texture", m.metallic_roughness_texture);
+    f("principled", m.principled);
     f("albedo_texture", m.albedo_texture); f("emission", m.emission);
     f("emission_texture", m.emission_texture); f("normal_texture", m.normal_texture);
     f("normal_scale", m.normal_scale); f("double_sided", m.double_sided);
@@ -32,7 +33,8 @@ template <class F> void visit_fields(const ShapeDesc& s, F&& f) {
     f("type", s.type); f("material", s.material); f("corner", s.corner); f("edge1", s.edge1);
     f("edge2", s.edge2); f("min", s.min); f("max", s.max); f("center", s.center); f("radius", s.radius);
     f("file", s.file); f("translate", s.translate); f("scale", s.scale); f("rotate_deg", s.rotate_deg);
-    f("mesh", s.mesh); f("instances", s.instances); f("light_units", s.light_units); f("first_light", s.first_light);
+    f("mesh", s.mesh); f("instances", s.instances); f("light_units", s.light_units); f("principled", s.principled);
+    f("first_light", s.first_light);
     f("light_count", s.light_count);
 }
 

@@ -283,7 +283,7 @@ static ImportBudget import_budget(const RunOptions& o) {
 SceneDesc load_scene(const RunOptions& o) {
     if (!o.scene_path.empty()) refuse_cube_as_scene(o.scene_path);
     SceneDesc scene = o.scene_path.empty()          ? parse_default_scene()
-                      : is_model_file(o.scene_path) ? scene_for_model(o.scene_path, o.gltf_light_units, import_budget(o))
+                      : is_model_file(o.scene_path) ? scene_for_model(o.scene_path, o.gltf_light_units, import_budget(o), o.gltf_principled)
                                                     : parse_scene_file(o.scene_path);
     complete_scene(scene, o);
     return scene;
@@ -291,6 +291,7 @@ SceneDesc load_scene(const RunOptions& o) {
 
 void complete_scene(SceneDesc& scene, const RunOptions& o) {
     apply_gltf_light_units(scene, o.gltf_light_units);  // before the files are read
+    apply_gltf_principled(scene, o.gltf_principled);
     resolve_imports(scene, import_budget(o));  // meshes, materials, textures and lights of imported files
     apply_overrides(scene, o.overrides);
 }

@@ -15,7 +15,7 @@ namespace sl {
 // The scene of the command line (the built-in demo, a model file or a scene file), with every
 // imported file read, then the command line's overrides. Each file is read here, once.
 SceneDesc load_scene(const RunOptions& o);
-// load_scene's steps after parsing: the glTF light units, every imported file read, then the
+// load_scene's steps after parsing: the glTF light units and diffuse base, every imported file read, then the
 // command line's overrides (for a scene parsed elsewhere, such as the Python module's dicts).
 void complete_scene(SceneDesc& scene, const RunOptions& o);
 

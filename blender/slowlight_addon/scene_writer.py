@@ -285,12 +285,23 @@ def write_scene(scene, folder, depsgraph=None):
     if export:
         glb = os.path.join(folder, "scene.glb")
         _export_glb(export, glb, view_layer)
-        doc["shapes"].append({"type": "gltf", "file": "scene.glb"})
+        doc["shapes"].append(_gltf_shape("scene.glb"))
     doc.update(_render_json(scene))
     path = os.path.join(folder, "scene.json")
     with open(path, "w") as f:
         json.dump(doc, f, indent=1)
     return path, warnings
+
+
+def _gltf_shape(name):
+    # Blender 3.x's Principled BSDF (v1) adds its diffuse base under the specular layer without
+    # taking the layer's share, which Cycles renders as it is: "blender3" draws it the same way
+    # (uncapped), so that the render matches Cycles'. 4.x's Principled v2 conserves energy, as
+    # slowlight's default does (docs/materials.md, "Two choices of base").
+    shape = {"type": "gltf", "file": name}
+    if bpy.app.version < (4, 0, 0):
+        shape["principled"] = "blender3"
+    return shape
 
 
 def medium_is_empty(medium):

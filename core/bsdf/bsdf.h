@@ -33,6 +33,9 @@ struct Bsdf {
     Vec3 base{0.8f};         // Lambert: albedo; conductor: F0 (Schlick); metallic-roughness: base colour
     Vec3 eta, k;             // conductor with a complex index (when complex_ior)
     bool complex_ior = false;
+    // Metallic-roughness: the diffuse base as Blender 3.x's Cycles draws it, without the
+    // energy-conserving cap (mr_diffuse; "principled": "blender3").
+    bool blender3_base = false;
     float alpha = 0.25f;     // GGX alpha (roughness^2)
     float ior = 1.5f;        // rough dielectric, metallic-roughness: index inside / outside
     float metallic = 0;      // metallic-roughness
@@ -195,12 +198,16 @@ inline float burley(float cos_o, float cos_i, float cos_oi, float roughness) {
 // reciprocal. For Blender's default layer
 // the cap does not bite below a base of ~0.6 (roughness 0.5). A material without a layer
 // (specular 0) is Lambertian: what glTF means, and what the OBJ/JSON diffuse surfaces are.
+// blender3_base drops the cap: base x Burley's shape exactly as Cycles 3.x adds it, which
+// returns more light than arrives where the layer and a bright base meet near grazing (the
+// user asked for Blender 3.x's render, not for glTF's energy balance). Still reciprocal.
 inline Vec3 mr_diffuse(const Bsdf& b, Vec3 wo, Vec3 wi) {
-    const float cap = (1 - layer_share(b, wo.z, b.ior)) * (1 - layer_share(b, wi.z, b.ior)) /
-                      std::max(1e-6f, 1 - layer_average(b));
     // Without a layer (specular 0) the surface is the Lambertian one glTF means (and the cap is 1).
     const bool layered = b.specular * max_component(b.specular_color) > 0;
     const float shape = layered ? burley(wo.z, wi.z, dot(wo, wi), std::sqrt(b.alpha)) : 1.0f;
+    if (b.blender3_base) return b.base * shape;
+    const float cap = (1 - layer_share(b, wo.z, b.ior)) * (1 - layer_share(b, wi.z, b.ior)) /
+                      std::max(1e-6f, 1 - layer_average(b));
     return vmin(b.base * shape, Vec3(cap));
 }
 

@@ -39,6 +39,7 @@ inline std::optional<bsdf::Bsdf> bsdf_of(const MaterialDesc& d) {
         b.specular = d.specular;
         b.specular_color = d.specular_color;
         b.transmission = d.transmission;
+        b.blender3_base = d.principled == PrincipledBase::Blender3;
         b = bsdf::cache_layer_averages(b);
         break;
     }

@@ -26,7 +26,8 @@ bool is_model_file(const std::string& path) {
     return e == ".glb" || e == ".gltf" || e == ".obj";
 }
 
-SceneDesc scene_for_model(const std::string& path, std::optional<LightUnits> light_units, const ImportBudget& budget) {
+SceneDesc scene_for_model(const std::string& path, std::optional<LightUnits> light_units, const ImportBudget& budget,
+                          std::optional<PrincipledBase> principled) {
     SceneDesc scene;
     scene.source = path;
     ShapeDesc s;
@@ -34,7 +35,10 @@ SceneDesc scene_for_model(const std::string& path, std::optional<LightUnits> lig
     std::error_code ec;
     s.file = fs::absolute(path, ec).lexically_normal().string();
     s.material = -1;
-    if (s.type == ShapeType::Gltf) s.light_units = light_units;
+    if (s.type == ShapeType::Gltf) {
+        s.light_units = light_units;
+        s.principled = principled;
+    }
     scene.shapes.push_back(s);
     resolve_imports(scene, budget);
 

@@ -17,8 +17,9 @@ namespace sl {
 bool is_model_file(const std::string& path);
 
 // Throws InputError naming the file when it cannot be read or has no light. `light_units`: how a
-// glTF file's lights are read (--gltf-light-units; empty: photometric).
+// glTF file's lights are read (--gltf-light-units; empty: photometric); `principled`: how its
+// metallic-roughness materials draw their diffuse base (--gltf-principled; empty: energy-conserving).
 SceneDesc scene_for_model(const std::string& path, std::optional<LightUnits> light_units = {},
-                          const ImportBudget& budget = {});
+                          const ImportBudget& budget = {}, std::optional<PrincipledBase> principled = {});
 
 }  // namespace sl

@@ -52,10 +52,12 @@ Affine entry_affine(const ShapeDesc& s) {
 }
 
 // Entries that name the same file the same way share what it holds: read once, placed by
-// instances. (Their own material, if they name one, is part of the way.)
-using FileKey = std::tuple<int, std::string, int, int>;
+// instances. (Their own material, if they name one, is part of the way, and so are the light
+// units and the diffuse base their materials are drawn with.)
+using FileKey = std::tuple<int, std::string, int, int, int>;
 FileKey key_of(const ShapeDesc& s) {
-    return {static_cast<int>(s.type), s.file, s.material, s.light_units ? static_cast<int>(*s.light_units) : -1};
+    return {static_cast<int>(s.type), s.file, s.material, s.light_units ? static_cast<int>(*s.light_units) : -1,
+            static_cast<int>(s.principled.value_or(PrincipledBase::EnergyConserving))};
 }
 
 // What a mesh holds once built: its arrays, Embree's copy of vertices and indices, its BVH.
@@ -210,6 +212,9 @@ void resolve_imports(SceneDesc& scene, const ImportBudget& budget) {
             for (size_t i = 0; i < f.materials.size(); ++i) {
                 if (!used[i]) continue;
                 MaterialDesc m = f.materials[i];
+                // The entry's choice of diffuse base (a gltf's "principled", --gltf-principled).
+                if (m.type == MaterialType::MetallicRoughness && first.type == ShapeType::Gltf)
+                    m.principled = first.principled.value_or(PrincipledBase::EnergyConserving);
                 m.albedo_texture = texture(m.albedo_texture);
                 m.metallic_roughness_texture = texture(m.metallic_roughness_texture);
                 m.normal_texture = texture(m.normal_texture);

@@ -38,6 +38,7 @@ _OPTIONS = {
     "max_memory": "--max-memory", "max_bucket_memory": "--max-bucket-memory", "threads": "--threads",
     "max_depth": "--max-depth", "strategy": "--strategy", "exposure": "--exposure",
     "exposure_percentile": "--exposure-percentile", "gltf_light_units": "--gltf-light-units",
+    "gltf_principled": "--gltf-principled",
 }
 _SWITCHES = {"exposure_follow": "--exposure-follow"}
 
@@ -163,8 +164,8 @@ def render(scene=None, *, progress=None, base_dir=None, **options):
 
     options: frames, passes, photons, width, height, seed, emission ("constant", "pulse",
     "pulse:WIDTH_NS"), camera_tof (bool), sections, max_memory (bytes or "2G"), max_bucket_memory,
-    threads, max_depth, strategy, exposure, exposure_percentile, exposure_follow, gltf_light_units:
-    the command line's flags of the same names. progress(section, passes_done, sections, passes)
+    threads, max_depth, strategy, exposure, exposure_percentile, exposure_follow, gltf_light_units,
+    gltf_principled: the command line's flags of the same names. progress(section, passes_done, sections, passes)
     is called after every pass. base_dir resolves a dict scene's file paths (default: the
     working directory). Ctrl-C ends the pass in flight and raises KeyboardInterrupt with
     `.result` (a Result, interrupted=True) and `.frames` (its frames) on the exception.

@@ -42,6 +42,9 @@ inline std::vector<BsdfCase> bsdf_cases() {
         m.alpha = c.alpha;
         m.base = Vec3(0.8f, 0.3f, 0.2f);
         out.push_back({"plastic_r" + rs, m});
+        m.blender3_base = true;  // "principled": "blender3": the base uncapped
+        out.push_back({"plastic_blender3_r" + rs, m});
+        m.blender3_base = false;
         m.metallic = 0.5f;
         out.push_back({"half_metal_r" + rs, m});
         m.metallic = 0;

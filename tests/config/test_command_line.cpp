@@ -83,6 +83,7 @@ TEST(CommandLine, EveryOptionInBothForms) {
         opt("--exposure", "0.5");
         opt("--max-depth", "12");
         opt("--gltf-light-units", "radiometric");
+        opt("--gltf-principled", "blender3");
         words.push_back("--camera-tof");
         words.push_back("--no-progress");
         words.push_back("scene.json");
@@ -112,6 +113,7 @@ TEST(CommandLine, EveryOptionInBothForms) {
         EXPECT_EQ(r.exposure, 0.5);
         EXPECT_EQ(r.overrides.max_depth, 12);
         EXPECT_EQ(r.gltf_light_units, LightUnits::Radiometric);
+        EXPECT_EQ(r.gltf_principled, PrincipledBase::Blender3);
         EXPECT_FALSE(r.progress);
     }
 }
@@ -206,6 +208,8 @@ TEST(CommandLine, Errors) {
         {{"render", "--max-depth", "deep"}, "command line: --max-depth: must be an integer in 1..1000, got 'deep'"},
         {{"render", "--gltf-light-units", "lumens"},
          "command line: --gltf-light-units: must be photometric or radiometric, got 'lumens'"},
+        {{"render", "--gltf-principled", "cycles"},
+         "command line: --gltf-principled: must be energy_conserving or blender3, got 'cycles'"},
         {{"render", "--no-progress=1"}, "command line: --no-progress does not take a value"},
     };
     for (const auto& [args, message] : cases) {
@@ -224,7 +228,7 @@ TEST(CommandLine, HelpListsEveryContractFlag) {
           "--emission",       "--camera-tof",   "--strategy",     "--threads",     "--stats",
           "--exposure",       "--no-progress",  "frame-by-frame", "pulse:WIDTH_NS", "--checkpoint DIR",
           "--checkpoint-every", "--time-limit", "--preview",    "--resume",      "--max-depth N",
-          "--gltf-light-units U"})
+          "--gltf-light-units U", "--gltf-principled P"})
         EXPECT_NE(help.find(flag), std::string::npos) << flag;
     // One line per option: no line longer than a wide terminal.
     size_t start = 0;

@@ -107,7 +107,7 @@ TEST(SettingsFingerprint, EveryFieldThatDecidesPixelsChangesIt) {
                                             "shapes[].file", "textures[].file",  "time.fps",
                                             "shapes[].first_light", "shapes[].light_count"};
     EXPECT_EQ(same, expected);
-    EXPECT_EQ(changed, 82);  // every leaf of every struct was tried (71, 9 GGX material fields, 2 normal map)
+    EXPECT_EQ(changed, 83);  // every leaf of every struct was tried (71, 10 GGX material fields, 2 normal map)
 }
 
 TEST(SettingsFingerprint, SectionsAndStrategyChangeIt) {

@@ -64,6 +64,16 @@ class RenderEqualsTheCommandLine(unittest.TestCase):
         cli, _ = ms.cli_exr_frames(model, options)
         self.assertTrue(np.array_equal(r.frames, cli))
 
+    def test_gltf_principled_reaches_the_render_as_on_the_command_line(self):
+        # The red plastic cube of bench/blender: its base drawn uncapped (Blender 3.x) is another image.
+        model = os.path.join(ms.SOURCE, "bench", "blender", "reference", "glossy_plastic.glb")
+        options = dict(frames=1, passes=2, photons=3000, width=24, height=18, gltf_principled="blender3")
+        r = slowlight.render(model, **options)
+        cli, _ = ms.cli_exr_frames(model, options)
+        self.assertTrue(np.array_equal(r.frames, cli))
+        default = slowlight.render(model, **dict(options, gltf_principled=None))
+        self.assertFalse(np.array_equal(r.frames, default.frames))
+
 
 class Streaming(unittest.TestCase):
     def test_frames_come_in_order_each_as_its_section_ends(self):
