@@ -26,6 +26,9 @@ METAL_ROUGHNESS = 0.35
 PLASTIC_SPHERE = (Vector((-0.55, 0.3, 0.4)), 0.4)
 PLASTIC_COLOUR = (0.2, 0.4, 0.7)
 PLASTIC_ROUGHNESS = 0.4
+# Principled "Specular" of the plastic: Blender's default 0.5 (F0 = 4 %); 0 leaves its Burley/
+# Lambertian base alone (docs/blender.md uses it to tell the gather's bias from the layer's).
+PLASTIC_SPECULAR = float(os.environ.get("SLOWLIGHT_TEST_PLASTIC_SPECULAR", "0.5"))
 
 
 def principled(name, colour, metallic=0.0, roughness=0.5):
@@ -98,7 +101,9 @@ def build(width=96, height=72):
     add("panel", [(-1.9, 1.2, 0.4), (-1.3, 1.2, 0.4), (-1.3, 1.2, 1.0), (-1.9, 1.2, 1.0)], [(0, 1, 2, 3)],
         emission("glow", EMISSION_STRENGTH))
     sphere("sphere", METAL_SPHERE, principled("rough metal", 0.9, metallic=1.0, roughness=METAL_ROUGHNESS))
-    sphere("plastic sphere", PLASTIC_SPHERE, principled("blue plastic", PLASTIC_COLOUR, roughness=PLASTIC_ROUGHNESS))
+    plastic = principled("blue plastic", PLASTIC_COLOUR, roughness=PLASTIC_ROUGHNESS)
+    plastic.node_tree.nodes["Principled BSDF"].inputs["Specular"].default_value = PLASTIC_SPECULAR
+    sphere("plastic sphere", PLASTIC_SPHERE, plastic)
     c, h = (HAZE_MIN + HAZE_MAX) / 2, (HAZE_MAX - HAZE_MIN) / 2
     bpy.ops.mesh.primitive_cube_add(size=2, location=c, scale=h)
     box = bpy.context.view_layer.objects.active

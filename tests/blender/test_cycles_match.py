@@ -5,7 +5,8 @@
 # (Cycles' volume in the same box). Both are linear radiance (W sr^-1 m^-2); their means over
 # the image must agree within 3 %. The regions' ratios (each sphere's, from the camera's
 # projection) are printed; SLOWLIGHT_TEST_CYCLES_SEEDS="1 2" also renders Cycles' second seed
-# and prints seed 2 / seed 1 per region (Cycles' own noise; docs/blender.md has the figures).
+# and prints seed 2 / seed 1 per region (Cycles' own noise; docs/blender.md has the figures);
+# SLOWLIGHT_TEST_PASSES and SLOWLIGHT_TEST_CYCLES_SAMPLES set the two renderers' effort.
 #
 # Cycles draws the Principled surfaces themselves: slowlight draws a non-metal Principled BSDF
 # as Cycles 3.4 does (Burley's diffuse under the GGX layer added on top, docs/materials.md, "The
@@ -21,6 +22,7 @@ import addon_env  # noqa: E402
 import exr_image  # noqa: E402
 import showcase_scene  # noqa: E402
 
+PASSES = int(os.environ.get("SLOWLIGHT_TEST_PASSES", "48"))  # slowlight's, of 100 000 photons
 CYCLES_SAMPLES = int(os.environ.get("SLOWLIGHT_TEST_CYCLES_SAMPLES", "128"))
 CYCLES_SEEDS = [int(s) for s in os.environ.get("SLOWLIGHT_TEST_CYCLES_SEEDS", "1").split()]
 W, H = 96, 72
@@ -40,7 +42,7 @@ def write_exr(path):
 
 scene.render.engine = 'SLOWLIGHT'
 st = scene.slowlight
-st.program, st.passes, st.photons = program, 48, 100000
+st.program, st.passes, st.photons = program, PASSES, 100000
 slow = os.path.join(work, "slowlight.exr")
 write_exr(slow)
 check(os.path.exists(slow), "F12 with the slowlight engine wrote the steady image")
@@ -90,7 +92,7 @@ for name, rect in regions.items():
     print("%-20s slowlight %.6f  cycles %.6f  ratio %.4f%s" % (name, ma, mb, ma / mb, noise))
 ratio = exr_image.mean(a) / exr_image.mean(b)
 check(abs(ratio - 1) < 0.03, "the image means agree within 3 %% (slowlight / Cycles = %.4f)" % ratio)
-# Each sphere on its own, loosely: at 48 passes the gather still reads a small curved object's
+# Each sphere on its own, loosely: at the test's 48 passes the gather still reads a small curved object's
 # indirect light 6-8 % low (a Lambertian sphere as much; it goes with more passes) and Cycles'
 # 128 samples leave the metal's highlight a few % noisy (docs/blender.md). 15 % still catches a
 # sphere drawn as the wrong kind of surface: as a mirror the metal's highlight shrinks to a point.
