@@ -100,7 +100,7 @@ def build(width=96, height=72):
     add("wall", [(-4, 3, 0), (4, 3, 0), (4, 3, 4), (-4, 3, 4)], [(0, 1, 2, 3)], grey)
     add("panel", [(-1.9, 1.2, 0.4), (-1.3, 1.2, 0.4), (-1.3, 1.2, 1.0), (-1.9, 1.2, 1.0)], [(0, 1, 2, 3)],
         emission("glow", EMISSION_STRENGTH))
-    sphere("sphere", METAL_SPHERE, principled("rough metal", 0.9, metallic=1.0, roughness=METAL_ROUGHNESS))
+    sphere("metal sphere", METAL_SPHERE, principled("rough metal", 0.9, metallic=1.0, roughness=METAL_ROUGHNESS))
     plastic = principled("blue plastic", PLASTIC_COLOUR, roughness=PLASTIC_ROUGHNESS)
     plastic.node_tree.nodes["Principled BSDF"].inputs["Specular"].default_value = PLASTIC_SPECULAR
     sphere("plastic sphere", PLASTIC_SPHERE, plastic)
