@@ -1,7 +1,7 @@
 # Makes docs/images/blender_addon_frames.png: the add-on's Render Animation of the tests' scripted
-# scene (tests/blender/showcase_scene.py: a lamp, an emissive quad, a metal sphere, a hazy box),
-# Blender frames written as PNG through its Standard view transform; three of them side by side
-# (8, 11 and 24 ns: constant light, the lamp switched on at 0).
+# scene (tests/blender/showcase_scene.py: a lamp, an emissive quad, a rough metal and a blue plastic
+# sphere, a hazy box), Blender frames written as PNG through its Standard view transform; three of
+# them side by side (8, 11 and 24 ns: constant light, the lamp switched on at 0).
 #
 #   nice -n 15 blender -b --factory-startup -P blender/doc_picture.py -- build/slowlight OUT_FOLDER
 #   ffmpeg -i OUT_FOLDER/f0008.png -i OUT_FOLDER/f0011.png -i OUT_FOLDER/f0024.png \

@@ -59,13 +59,7 @@ verts = [(x, y, lift) for x, y in corners] + [(x, y, 1 + lift) for x, y in corne
 faces = [(3, 2, 1, 0), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)]
 sc.mesh("cube", verts, faces, metal)
 if kind == "glass":
-    lamp = bpy.data.materials.new("lamp")
-    lamp.use_nodes = True
-    nodes = lamp.node_tree.nodes
-    nodes.remove(nodes["Principled BSDF"])
-    emission = nodes.new("ShaderNodeEmission")
-    emission.inputs["Strength"].default_value = 20.0
-    lamp.node_tree.links.new(emission.outputs["Emission"], nodes["Material Output"].inputs["Surface"])
+    lamp = sc.emission("lamp", 20.0)
     sc.mesh("lamp", [(-1.5, 0.5, 3), (-1.5, -0.5, 3), (-0.5, -0.5, 3), (-0.5, 0.5, 3)], [(0, 1, 2, 3)], lamp)
 else:
     sc.sun(3.0, (math.radians(45), 0, math.radians(-60)), (3, -3, 4))

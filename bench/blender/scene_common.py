@@ -1,8 +1,9 @@
 # Shared by the scene builders here: a fresh scene, quads with Blender's default Principled
-# material, a sun, a camera, a black world, the stock glTF export at its default settings, the
-# swap to Lambertian Diffuse BSDFs (slowlight draws these surfaces diffuse), and Cycles set up for
-# reference images (Standard view transform, no denoising, high bounce limits, box filter, float
-# EXR). Imported by the builders after they put this folder on sys.path.
+# material, an Emission-only material, a sun, a camera, a black world, the stock glTF export at
+# its default settings, the swap to Lambertian Diffuse BSDFs (slowlight draws these surfaces
+# diffuse), and Cycles set up for reference images (Standard view transform, no denoising, high
+# bounce limits, box filter, float EXR). Imported by the builders after they put this folder on
+# sys.path.
 import os
 
 import bpy
@@ -26,6 +27,18 @@ def principled(name, grey):
     m = bpy.data.materials.new(name)
     m.use_nodes = True
     m.node_tree.nodes["Principled BSDF"].inputs["Base Color"].default_value = (grey, grey, grey, 1)
+    return m
+
+
+def emission(name, strength):
+    """A material whose surface is an Emission shader alone (strength: radiance, W sr^-1 m^-2)."""
+    m = bpy.data.materials.new(name)
+    m.use_nodes = True
+    nodes = m.node_tree.nodes
+    nodes.remove(nodes["Principled BSDF"])
+    e = nodes.new("ShaderNodeEmission")
+    e.inputs["Strength"].default_value = strength
+    m.node_tree.links.new(e.outputs["Emission"], nodes["Material Output"].inputs["Surface"])
     return m
 
 
