@@ -225,6 +225,19 @@ inline LobeChoice mr_lobes(const Bsdf& b, Vec3 wo, float eta) {
     return {s / sum, d / sum, t / sum};
 }
 
+// Metallic-roughness with transmission: a drawn microfacet reflects with this probability and
+// transmits otherwise, its reflectance against its transmittance at the microfacet (cos_h =
+// wo.m), as a rough dielectric chooses by F(wo.m). Choosing instead by the lobes' shares at the
+// macro-surface gave weights above 1: inside beyond the critical angle every microfacet that
+// reflects (F = 1) was drawn with probability 0.8, a weight of 1.25 per internal reflection,
+// which compounded (x1.25^k) into fireflies through solid glass.
+inline float mr_reflect_share(const Bsdf& b, float cos_h, float eta) {
+    const float r = luminance(mr_specular_fresnel(b, cos_h, eta));
+    const float t = (1 - b.metallic) * b.transmission * (1 - dielectric_scale(b) * fresnel_dielectric(cos_h, eta)) *
+                    std::max(0.0f, luminance(b.base));
+    return r + t > 0 ? r / (r + t) : 1.0f;
+}
+
 // --- eval ------------------------------------------------------------------------------------
 
 // The frame a BSDF is evaluated in: two-sided kinds mirror both directions when wo is below.
@@ -321,6 +334,17 @@ inline float pdf(const Bsdf& b, Vec3 wo, Vec3 wi) {
     }
     case Kind::MetallicRoughness: {
         const LobeChoice p = mr_lobes(b, wo, b.ior);
+        if (b.transmission > 0) {  // one microfacet draw for both, split at the microfacet
+            const float pd = p.spec + p.trans;
+            if (wi.z > 0) {
+                float spec = 0;
+                if (ggx_reflection(g, wo, wi, wm) > 0)
+                    spec = ggx_reflection_pdf(g, wo, wm) * mr_reflect_share(b, dot(wo, wm), b.ior);
+                return pd * spec + p.diffuse * wi.z / kPi;
+            }
+            if (pd <= 0 || !refraction_half_vector(wo, wi, b.ior, wm)) return 0;
+            return pd * ggx_transmission_pdf(g, wo, wi, wm, b.ior) * (1 - mr_reflect_share(b, dot(wo, wm), b.ior));
+        }
         if (wi.z > 0) {
             const float spec = ggx_reflection(g, wo, wi, wm) > 0 ? ggx_reflection_pdf(g, wo, wm) : 0;
             return p.spec * spec + p.diffuse * wi.z / kPi;
@@ -381,7 +405,21 @@ inline Sample sample(const Bsdf& b, Vec3 wo, float uc, float u1, float u2, Trans
         const float eta = (two_sided(b) || side > 0) ? b.ior : 1 / b.ior;
         const LobeChoice p = mr_lobes(b, o, eta);
         if (p.spec + p.diffuse + p.trans <= 0) return s;
-        if (uc < p.spec) {
+        if (!two_sided(b)) {  // with transmission: diffuse, or a microfacet that reflects or transmits
+            if (uc < p.diffuse) {
+                wi = cosine();
+            } else {
+                const Vec3 wm = g.sample_visible(o, u1, u2);
+                const float uf = (uc - p.diffuse) / (p.spec + p.trans);
+                if (uf < mr_reflect_share(b, dot(o, wm), eta)) {
+                    wi = reflect_about(o, wm);
+                    if (wi.z <= 0) return s;  // reflected through the macro-surface: lost
+                } else {
+                    float etap;
+                    if (!refract_about(o, wm, eta, wi, etap) || wi.z >= 0) return s;
+                }
+            }
+        } else if (uc < p.spec) {
             wi = reflect_about(o, g.sample_visible(o, u1, u2));
             if (wi.z <= 0) return s;  // reflected through the macro-surface: lost
         } else if (uc < p.spec + p.diffuse) {
