@@ -44,6 +44,18 @@ std::string watts(double w) {
 
 // Every light's power in watts (the mean of its RGB channels), the file it came from, and the
 // emissive surfaces of every imported file.
+// Metallic-roughness materials and how many of them draw Cycles 3.x's Principled v1
+// ("principled": "blender3": said by the scene, --gltf-principled, or a file Blender 3.x wrote).
+std::pair<size_t, size_t> principled_counts(const SceneDesc& s) {
+    size_t all = 0, blender3 = 0;
+    for (const MaterialDesc& m : s.materials)
+        if (m.type == MaterialType::MetallicRoughness) {
+            ++all;
+            if (m.principled == PrincipledBase::Blender3) ++blender3;
+        }
+    return {all, blender3};
+}
+
 void print_light_powers(std::ostream& out, const SceneDesc& s, Vec3 size) {
     std::vector<const ShapeDesc*> from(s.lights.size(), nullptr);
     for (const ShapeDesc& sh : s.shapes)
@@ -107,6 +119,10 @@ void print_scene_info(std::ostream& out, std::ostream& err, const SceneDesc& s, 
         << format_bytes(imported_mesh_bytes(s)) << " of vertex data, about " << format_bytes(imported_bvh_bytes(s))
         << " more in the BVH); " << s.textures.size() << " texture" << (s.textures.size() == 1 ? "" : "s") << ", "
         << format_bytes(texture_bytes(s)) << "\n";
+    if (const auto [all, blender3] = principled_counts(s); all > 0)
+        out << "principled: " << all << " metallic-roughness material" << (all == 1 ? "" : "s") << ", " << blender3
+            << " drawn as Blender 3.x's Cycles draws them (\"blender3\"), " << all - blender3
+            << " energy-conserving\n";
     print_light_powers(out, s, f.size);
     for (const std::string& w : scene_warnings(ctx, f)) err << w << "\n";
 
@@ -201,6 +217,8 @@ nlohmann::json scene_info_json(const SceneDesc& s, const RunOptions& options) {
                     {"held_triangles", held_triangles(s)}, {"instances", imported_instances(s)},
                     {"mesh_bytes", imported_mesh_bytes(s)}, {"bvh_bytes", imported_bvh_bytes(s)},
                     {"textures", s.textures.size()}, {"texture_bytes", texture_bytes(s)}};
+    const auto [mr_all, mr_blender3] = principled_counts(s);
+    j["principled"] = {{"metallic_roughness", mr_all}, {"blender3", mr_blender3}};
     std::vector<const ShapeDesc*> from(s.lights.size(), nullptr);
     for (const ShapeDesc& sh : s.shapes)
         for (int i = sh.first_light; i < sh.first_light + sh.light_count; ++i) from[static_cast<size_t>(i)] = &sh;

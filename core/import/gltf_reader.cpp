@@ -18,6 +18,7 @@
 #include "foundation/constants.h"
 #include "foundation/errors.h"
 #include "core/import/gltf_files.h"
+#include "core/import/gltf_writer_base.h"
 #include "core/import/gltf_node_expansion.h"
 #include "core/import/imported_file.h"
 #include "core/import/light_mapping.h"
@@ -172,6 +173,7 @@ public:
     ImportedFile read() {
         load();
         check_extensions();
+        out_.writer_principled = principled_of_writer(model_.asset.generator);
         out_.files.push_back(path_);
         for (const auto& b : model_.buffers)
             if (!b.uri.empty() && b.uri.rfind("data:", 0) != 0)

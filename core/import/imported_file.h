@@ -31,6 +31,8 @@ struct ImportedFile {
     std::vector<ImportedTexture> textures;
     std::vector<LightDesc> lights;
     std::optional<CameraDesc> camera;  // the first camera of the default scene (glTF)
+    // The diffuse base the file's writer meant (core/import/gltf_writer_base.h); empty: default.
+    std::optional<PrincipledBase> writer_principled;
     std::vector<std::string> files;    // every file read (the mesh, .mtl, .bin, images)
     std::vector<std::string> warnings;  // one line each, without the "warning: " prefix
 };

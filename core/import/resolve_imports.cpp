@@ -57,7 +57,7 @@ Affine entry_affine(const ShapeDesc& s) {
 using FileKey = std::tuple<int, std::string, int, int, int>;
 FileKey key_of(const ShapeDesc& s) {
     return {static_cast<int>(s.type), s.file, s.material, s.light_units ? static_cast<int>(*s.light_units) : -1,
-            static_cast<int>(s.principled.value_or(PrincipledBase::EnergyConserving))};
+            s.principled ? static_cast<int>(*s.principled) : -1};  // unset: the file's writer decides
 }
 
 // What a mesh holds once built: its arrays, Embree's copy of vertices and indices, its BVH.
@@ -212,9 +212,10 @@ void resolve_imports(SceneDesc& scene, const ImportBudget& budget) {
             for (size_t i = 0; i < f.materials.size(); ++i) {
                 if (!used[i]) continue;
                 MaterialDesc m = f.materials[i];
-                // The entry's choice of diffuse base (a gltf's "principled", --gltf-principled).
+                // The entry's choice of diffuse base (a gltf's "principled", --gltf-principled),
+                // else the one the file's writer meant (Blender 3.x: its Principled v1).
                 if (m.type == MaterialType::MetallicRoughness && first.type == ShapeType::Gltf)
-                    m.principled = first.principled.value_or(PrincipledBase::EnergyConserving);
+                    m.principled = first.principled.value_or(f.writer_principled.value_or(PrincipledBase::EnergyConserving));
                 m.albedo_texture = texture(m.albedo_texture);
                 m.metallic_roughness_texture = texture(m.metallic_roughness_texture);
                 m.normal_texture = texture(m.normal_texture);

@@ -92,9 +92,10 @@ inline void write_obj(const std::string& obj_path, const std::string& mtl_name, 
     }
 }
 
-// glTF with one mesh (a primitive per material) under one node; binary = .glb.
+// glTF with one mesh (a primitive per material) under one node; binary = .glb. generator:
+// asset.generator (the writer's name), left out when empty.
 inline void write_gltf(const std::string& path, const ModelMesh& m, const std::vector<ModelMaterial>& mats, bool binary,
-                       const nlohmann::json& extra_lights = nullptr) {
+                       const nlohmann::json& extra_lights = nullptr, const std::string& generator = "") {
     using nlohmann::json;
     std::vector<unsigned char> bin;
     auto append = [&](const void* p, size_t n) {
@@ -106,6 +107,7 @@ inline void write_gltf(const std::string& path, const ModelMesh& m, const std::v
     };
     json j;
     j["asset"] = {{"version", "2.0"}};
+    if (!generator.empty()) j["asset"]["generator"] = generator;
     j["scene"] = 0;
     j["scenes"] = json::array({{{"nodes", {0}}}});
     j["nodes"] = json::array({{{"mesh", 0}}});

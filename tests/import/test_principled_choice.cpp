@@ -24,14 +24,14 @@ namespace {
 
 // A red plastic quad under Blender's default layer (specular 1 = F0 4 %, roughness 0.2) and, so
 // that the file alone is lit, an emissive quad above it.
-void write_plastic_model(const std::string& path) {
+void write_plastic_model(const std::string& path, const std::string& generator = "") {
     ModelMesh m;
     m.quad({-1, 0, 1}, {2, 0, 0}, {0, 0, -2}, 0);
     m.quad({-0.2f, 2, -0.2f}, {0, 0, 0.4f}, {0.4f, 0, 0}, 1);
     ModelMaterial plastic("plastic", Vec3(0.8f, 0.1f, 0.1f));
     plastic.specular = 1;
     plastic.roughness = 0.2f;
-    write_gltf(path, m, {plastic, {"lamp", Vec3(0), Vec3(5)}}, true);
+    write_gltf(path, m, {plastic, {"lamp", Vec3(0), Vec3(5)}}, true, nullptr, generator);
 }
 
 SceneDesc load(const std::vector<std::string>& args) {
@@ -104,6 +104,42 @@ TEST(PrincipledChoice, AModelRenderedDirectlyTakesTheFlag) {
     EXPECT_TRUE(b.blender3_base);
     EXPECT_EQ(b.kind, bsdf::Kind::MetallicRoughness);
     EXPECT_NEAR(b.base.x, 0.8f, 1e-6f);  // the rest of the material as read
+}
+
+// A file Blender 3.x's exporter wrote was made from Principled v1 materials: unless told
+// otherwise it is drawn as Cycles 3.x draws them; Blender 4.x's (Principled v2) and any other
+// writer's get the energy-conserving default.
+TEST(PrincipledChoice, AFileBlender3WroteIsDrawnAsBlender3UnlessToldOtherwise) {
+    TempDir dir;
+    write_plastic_model(dir.file("b34.glb"), "Khronos glTF Blender I/O v3.4.50");
+    write_plastic_model(dir.file("b29.glb"), "Khronos glTF Blender I/O v1.6.16");
+    write_plastic_model(dir.file("b40.glb"), "Khronos glTF Blender I/O v4.0.44");
+    write_plastic_model(dir.file("other.glb"), "Blender I/O v3.4.50 (a look-alike)");
+    auto blender3 = [&](const std::vector<std::string>& args) {
+        const SceneDesc scene = load(args);
+        const MaterialTable table(scene);
+        for (size_t i = 0; i < table.size(); ++i)
+            if (scene.materials[i].name == "plastic") return table[static_cast<int>(i)].bsdf.blender3_base;
+        ADD_FAILURE() << "no plastic material";
+        return false;
+    };
+    EXPECT_TRUE(blender3({dir.file("b34.glb")}));
+    EXPECT_TRUE(blender3({dir.file("b29.glb")}));
+    EXPECT_FALSE(blender3({dir.file("b40.glb")}));
+    EXPECT_FALSE(blender3({dir.file("other.glb")}));
+    EXPECT_FALSE(blender3({dir.file("b34.glb"), "--gltf-principled", "energy_conserving"}));
+    EXPECT_TRUE(blender3({dir.file("b40.glb"), "--gltf-principled", "blender3"}));
+    // In a scene: the entry's key, then the flag, then the writer.
+    std::ofstream(dir.file("scene.json")) << R"({
+      "camera": {"position": [0, 3, 3], "look_at": [0, 0, 0]},
+      "shapes": [
+        {"type": "gltf", "file": "b34.glb"},
+        {"type": "gltf", "file": "b34.glb", "principled": "energy_conserving", "translate": [3, 0, 0]},
+        {"type": "gltf", "file": "b40.glb", "translate": [-3, 0, 0]}],
+      "lights": [{"type": "point", "position": [0, 2, 0], "power": [10, 10, 10]}]})";
+    EXPECT_EQ(blender3_per_shape(load({dir.file("scene.json")})), (std::vector<bool>{true, false, false}));
+    EXPECT_EQ(blender3_per_shape(load({dir.file("scene.json"), "--gltf-principled", "energy_conserving"})),
+              (std::vector<bool>{false, false, false}));
 }
 
 void expect_refused(const std::string& scene_text, const std::string& fragment) {
