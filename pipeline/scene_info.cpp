@@ -42,8 +42,6 @@ std::string watts(double w) {
     return buf;
 }
 
-// Every light's power in watts (the mean of its RGB channels), the file it came from, and the
-// emissive surfaces of every imported file.
 // Metallic-roughness materials and how many of them draw Cycles 3.x's Principled v1
 // ("principled": "blender3": said by the scene, --gltf-principled, or a file Blender 3.x wrote).
 std::pair<size_t, size_t> principled_counts(const SceneDesc& s) {
@@ -56,6 +54,8 @@ std::pair<size_t, size_t> principled_counts(const SceneDesc& s) {
     return {all, blender3};
 }
 
+// Every light's power in watts (the mean of its RGB channels), the file it came from, and the
+// emissive surfaces of every imported file.
 void print_light_powers(std::ostream& out, const SceneDesc& s, Vec3 size) {
     std::vector<const ShapeDesc*> from(s.lights.size(), nullptr);
     for (const ShapeDesc& sh : s.shapes)
