@@ -102,7 +102,7 @@ const Option kOptions[] = {
              bad_value(f, "must be photometric or radiometric, got '" + printable(v) + "'");
      }},
     {kRender | kInfo, "--gltf-principled", "", "P",
-     "glTF materials' diffuse base: energy_conserving or blender3 (as Cycles 3.x; the default for files Blender 3.x wrote)",
+     "glTF base: energy_conserving or blender3 (as Cycles 3.x; default for files Blender 3.x wrote)",
      [](RunOptions& r, std::string_view f, std::string_view v) {
          if (v == "energy_conserving")
              r.gltf_principled = PrincipledBase::EnergyConserving;

@@ -2,7 +2,8 @@
 // Which diffuse base a glTF file's own writer meant (config/scene_desc.h, PrincipledBase): a
 // file written by Blender's exporter before Blender 4.0 was made from Principled v1 materials,
 // whose diffuse base Cycles 3.x draws uncapped (Burley's shape), so that is what its author
-// saw; any other writer (Blender 4.x: Principled v2, which conserves energy) gets the default. The scene entry's "principled" and --gltf-principled still decide over this.
+// saw; any other writer (Blender 4.x: Principled v2, which conserves energy) gets the default.
+// The scene entry's "principled" and --gltf-principled still decide over this.
 #include <cstdlib>
 #include <optional>
 #include <string>
