@@ -11,6 +11,21 @@
 
 namespace sl {
 
+// A triangle of material m sends this much power per m^2 (W/m^2): its radiance (times its
+// emission texture's mean) times pi, from one face or both.
+Vec3 EmissiveTriangles::power_per_area(const MaterialDesc& m) const {
+    const Vec3 mean = m.emission_texture >= 0
+                          ? m.emission * scene_->textures[static_cast<size_t>(m.emission_texture)].image->mean
+                          : m.emission;
+    return mean * (kPi * (m.double_sided ? 2.0f : 1.0f));
+}
+
+float EmissiveTriangles::pdf_area_of(const MaterialDesc& m) const {
+    if (!(total_weight_ > 0)) return 0;
+    const float w = average(power_per_area(m));
+    return w > 0 ? static_cast<float>(w / total_weight_) : 0.0f;
+}
+
 EmissiveTriangles::EmissiveTriangles(const SceneDesc& scene) : scene_(&scene) {
     std::vector<double> weight;
     // One triangle of an emissive material; uv: its corners' texture coordinates, or null.
@@ -31,9 +46,7 @@ EmissiveTriangles::EmissiveTriangles(const SceneDesc& scene) : scene_(&scene) {
             tri.uv[2 * k] = uv ? uv[k][0] : 0;
             tri.uv[2 * k + 1] = uv ? uv[k][1] : 0;
         }
-        Vec3 mean = tri.texture >= 0 ? tri.radiance * scene.textures[static_cast<size_t>(tri.texture)].image->mean
-                                     : tri.radiance;
-        Vec3 p = mean * (kPi * tri.area * (tri.two_sided ? 2.0f : 1.0f));
+        Vec3 p = power_per_area(mat) * tri.area;
         if (!(average(p) > 0)) return;
         power_ += p;
         weight.push_back(average(p));
@@ -81,6 +94,7 @@ EmissiveTriangles::EmissiveTriangles(const SceneDesc& scene) : scene_(&scene) {
     }
     double total = 0;
     for (double w : weight) total += w;
+    total_weight_ = total;
     double run = 0;
     for (double w : weight) {
         run += w;

@@ -32,8 +32,13 @@ public:
 
     // A point by power: u1 picks the triangle (and, rescaled, is reused with u2 to place the point).
     EmitterPoint sample(float u1, float u2) const;
+    // The density per m^2 with which sample() picks a point on any triangle of material m (a
+    // path that met an emitter weighs it against this; sample's choice is by power, so within
+    // one material it is the same everywhere). 0 for a material that is not among them.
+    float pdf_area_of(const MaterialDesc& m) const;
 
 private:
+    Vec3 power_per_area(const MaterialDesc& m) const;
     struct Triangle {
         Vec3 v0, e1, e2, normal;
         Vec3 radiance;   // the material's factor
@@ -46,6 +51,7 @@ private:
     std::vector<Triangle> tris_;
     std::vector<float> cdf_;  // cumulative, normalised
     std::vector<float> prob_;
+    double total_weight_ = 0;  // the sum of the triangles' choice weights (average power, W)
     Vec3 power_;
 };
 

@@ -60,8 +60,9 @@ inline Vec3 frame_normal(const SurfaceMaterial& m, const bsdf::Bsdf& b, const Su
 // photons) and moves the path on. Returns the throughput weight f |cos| / pdf; zero when the
 // draw is lost (GGX's single-scattering loss) or would leave through the wrong side of the true
 // (geometric) surface, and the path ends. b: bsdf_at(m, hit), made once by the caller.
+// pdf (when given): the solid-angle density of the drawn direction.
 inline Vec3 follow_glossy(const SurfaceMaterial& m, const bsdf::Bsdf& b, const SurfaceHit& hit, Vec3& o, Vec3& d,
-                          bool& inside, float& inside_ior, Rng& rng, bsdf::Transport mode) {
+                          bool& inside, float& inside_ior, Rng& rng, bsdf::Transport mode, float* pdf = nullptr) {
     const LocalFrame frame(frame_normal(m, b, hit, d, inside));
     const Vec3 wo = frame.local(-d);
     const float uc = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
@@ -78,6 +79,7 @@ inline Vec3 follow_glossy(const SurfaceMaterial& m, const bsdf::Bsdf& b, const S
     const Vec3 side = dot(wi, hit.normal) > 0 ? hit.normal : -hit.normal;
     o = hit.position + side * ray_epsilon(hit.position, hit.t);
     d = wi;
+    if (pdf) *pdf = s.pdf;
     return s.weight;
 }
 

@@ -134,6 +134,7 @@ EmittedPhoton LightSet::emit(Rng& rng) const {
 
 bool LightSet::sample_direct(size_t i, Vec3 p, Vec3 n, float u1, float u2, DirectLightSample& out) const {
     const Light& l = lights_[i];
+    out.pdf = 0;
     if (l.mesh) {
         const EmitterPoint ep = emitters_.sample(u1, u2);
         Vec3 v = ep.position - p;
@@ -145,6 +146,7 @@ bool LightSet::sample_direct(size_t i, Vec3 p, Vec3 n, float u1, float u2, Direc
         if (ep.two_sided) cos_l = std::abs(cos_l);
         if (cos_p <= 0 || cos_l <= 0) return false;
         out.irradiance = ep.radiance * (cos_l * cos_p / (d2 * ep.pdf_area));
+        out.pdf = ep.pdf_area * d2 / cos_l;
         out.to_light = wi;
         out.distance = d;
         return true;
@@ -170,6 +172,7 @@ bool LightSet::sample_direct(size_t i, Vec3 p, Vec3 n, float u1, float u2, Direc
         float cos_l = -dot(l.normal, wi);
         if (cos_l <= 0) return false;
         out.irradiance = l.desc.radiance * (cos_l * cos_p * l.area / d2);
+        out.pdf = d2 / (cos_l * l.area);
     } else {
         if (l.desc.type == LightType::Spot && dot(-wi, l.desc.direction) < l.cos_cone) return false;
         out.irradiance = l.intensity * (cos_p / d2);

@@ -26,6 +26,10 @@ struct DirectLightSample {
     Vec3 to_light;    // unit direction from the point towards the light sample
     float distance = 0;
     double start_ns = 0;  // when the light left the sample's point (a sun: slightly < 0)
+    // The solid-angle density of to_light under this light's sampler (quads, emissive meshes);
+    // 0 for a light no path can meet by chance (point, spot, sun): multiple importance
+    // sampling at glossy vertices weighs the two strategies by it.
+    float pdf = 0;
 };
 
 // Light i sampled once for a camera segment in the medium (single scattering by next-event
@@ -121,6 +125,17 @@ public:
     // the stored normal) faces the viewer, and the radiance it then sends.
     bool quad_front_seen(size_t i, Vec3 d) const { return dot(d, lights_[i].normal) < 0; }
     Vec3 quad_radiance(size_t i) const { return lights_[i].desc.radiance; }
+    // The solid-angle densities with which sample_direct would have picked the point a path
+    // met at distance t along unit d: on quad light i (seen from the front), or on an emissive
+    // surface of material m with unit normal n (0 where it picks none).
+    float quad_pdf(size_t i, Vec3 d, float t) const {
+        const float cos_l = -dot(d, lights_[i].normal);
+        return cos_l > 0 ? t * t / (cos_l * lights_[i].area) : 0.0f;
+    }
+    float emitter_pdf(const MaterialDesc& m, Vec3 d, Vec3 n, float t) const {
+        const float cos_l = std::abs(dot(d, n));
+        return cos_l > 0 ? emitters_.pdf_area_of(m) * t * t / cos_l : 0.0f;
+    }
 
 private:
     struct Light {

@@ -40,6 +40,30 @@ inline void deposit(SectionBuffer& buffer, DepositQueue& deposits, const Timelin
     deposits.add(buffer.slot(pixel, s), L.x, L.y, L.z);
 }
 
+// Multiple importance sampling (Veach 1997, the power heuristic) of the two ways a followed
+// glossy vertex finds an area emitter: a light sample (density p_light) and the BSDF's own
+// direction meeting it (p_bsdf). Each counts with weight p^2 / (p_light^2 + p_bsdf^2), so a
+// sharp lobe is not left to light samples alone (fireflies through rough glass).
+inline float power_heuristic(float p, float other) {
+    if (!(p > 0)) return 0;
+    if (!(other > 0)) return 1;
+    const float r = other / p;
+    return 1 / (1 + r * r);
+}
+
+// The leg after a followed glossy vertex, for the emitter it may meet: the density its
+// direction was drawn with, and whether the vertex's light samples could have drawn it too.
+struct MisLeg {
+    float bsdf_pdf = 0;
+    bool on = false;       // weighing at all (RenderContext::glossy_mis); off: light samples alone
+    bool lights_cover = true;
+    // The share of an emitter's light met along this leg, p_light its light-sample density there.
+    float share(float p_light) const {
+        if (!on) return 0;
+        return lights_cover ? power_heuristic(bsdf_pdf, p_light) : 1.0f;
+    }
+};
+
 struct PixelTracer {
     const RenderContext& ctx;
     SectionBuffer& buffer;
@@ -76,9 +100,14 @@ struct PixelTracer {
         float inside_ior = 1;
         int specular = 0;
         float tnear = 0;
-        // The last vertex was a followed glossy one whose direct light already counted the
-        // emitters on the side this leg leaves by: an emitter it meets adds nothing more.
+        // The last vertex was a followed glossy one whose light samples already counted the
+        // emitters on the side this leg leaves by: an emitter it meets adds only its share by
+        // the power heuristic (MisLeg), or nothing without multiple importance sampling.
         bool direct_done = false;
+        MisLeg mis;
+        // This leg leaves a followed glossy vertex at max_depth: it is traced only for the
+        // emitter it may meet (that vertex's direct light, by multiple importance sampling).
+        bool last_leg = false;
         has_visible_point = false;
         medium_cycles = 0;
         const bool tof = settings.camera_tof;
@@ -87,22 +116,35 @@ struct PixelTracer {
             ++rays;
             const bool found = ctx.geometry.intersect(o, d, tnear, 1e30f, hit);
             // Dielectric solids hold no medium: only pieces outside them cross it.
-            if (medium && !inside) cross_medium(o, d, tnear, found ? hit.t : 1e30f, leg_ns, specular, beta, rng);
+            if (medium && !inside) {
+                if (last_leg)
+                    beta *= medium->transmittance(o, d, found ? hit.t : 1e30f);  // nothing scatters beyond the cap
+                else
+                    cross_medium(o, d, tnear, found ? hit.t : 1e30f, leg_ns, specular, beta, rng);
+            }
             if (!found) return;
             leg_ns += hit.t * (inside ? inside_ior : 1.0f) / kSpeedOfLight;
             if (hit.light >= 0) {  // an emitter seen directly (or through specular surfaces)
                 const size_t l = static_cast<size_t>(hit.light);
-                if (!direct_done && ctx.lights.quad_front_seen(l, d))
-                    deposit(buffer, deposits, ctx.timeline, local, tof ? leg_ns : 0.0, beta * ctx.lights.quad_radiance(l));
+                const float share = direct_done ? mis.share(ctx.lights.quad_pdf(l, d, hit.t)) : 1.0f;
+                if (share > 0 && ctx.lights.quad_front_seen(l, d))
+                    deposit(buffer, deposits, ctx.timeline, local, tof ? leg_ns : 0.0,
+                            beta * ctx.lights.quad_radiance(l) * share);
                 return;
             }
             const SurfaceMaterial& m = ctx.materials[hit.material];
             const bool toward = dot(d, hit.normal) < 0;
             Vec3 nf = toward ? hit.normal : -hit.normal;
-            if (m.emits() && !direct_done) {  // an emissive mesh seen directly (or through specular surfaces)
-                Vec3 le = emission_at(m, hit, d);
-                if (!is_black(le)) deposit(buffer, deposits, ctx.timeline, local, tof ? leg_ns : 0.0, beta * le);
+            if (m.emits()) {  // an emissive mesh seen directly (or through specular surfaces)
+                const float share =
+                    direct_done
+                        ? mis.share(ctx.lights.emitter_pdf(ctx.scene.materials[static_cast<size_t>(hit.material)], d,
+                                                           hit.normal, hit.t))
+                        : 1.0f;
+                Vec3 le = share > 0 ? emission_at(m, hit, d) : Vec3(0);
+                if (!is_black(le)) deposit(buffer, deposits, ctx.timeline, local, tof ? leg_ns : 0.0, beta * le * share);
             }
+            if (last_leg) return;
             if (m.type == MaterialType::Diffuse) {
                 Vec3 ns = toward ? hit.shading_normal : -hit.shading_normal;
                 const Vec3 nm = m.normal_texture ? shading_normal_facing(m, hit, d) : ns;
@@ -130,12 +172,21 @@ struct PixelTracer {
                 const Vec3 nf_out = has_inside(b) && inside ? -nf : nf;
                 const LocalFrame frame(n_out);
                 const Vec3 wo = frame.local(-d);
-                direct_light(hit.position, hit.t, nf_out, n_out, tof ? leg_ns : 0.0, rng, [&](Vec3 wi) {
-                    return beta * bsdf::eval(b, wo, frame.local(wi));
+                // At max_depth the path still draws its direction, for the emitter it may meet.
+                const bool weigh = ctx.glossy_mis;
+                direct_light(hit.position, hit.t, nf_out, n_out, tof ? leg_ns : 0.0, rng, [&](Vec3 wi, float light_pdf) {
+                    const Vec3 wl = frame.local(wi);
+                    // light_pdf 0: a point, spot or sun, which no drawn direction meets: all its own.
+                    const float share = weigh && light_pdf > 0 ? power_heuristic(light_pdf, bsdf::pdf(b, wo, wl)) : 1.0f;
+                    return beta * bsdf::eval(b, wo, wl) * share;
                 });
-                if (++specular >= settings.max_depth) return;
-                w = follow_glossy(m, b, hit, o, d, inside, inside_ior, rng, bsdf::Transport::Radiance);
+                last_leg = ++specular >= settings.max_depth;
+                if (last_leg && !weigh) return;
+                float pdf = 0;
+                w = follow_glossy(m, b, hit, o, d, inside, inside_ior, rng, bsdf::Transport::Radiance, &pdf);
                 direct_done = dot(d, nf_out) > 0;
+                // The light samples' side is also the shading normal's: beyond it they draw nothing.
+                mis = MisLeg{pdf, weigh, dot(d, n_out) > 0};
             } else {
                 if (++specular >= settings.max_depth) return;
                 w = follow_specular(m, hit, o, d, inside, inside_ior, rng);
@@ -273,11 +324,11 @@ struct PixelTracer {
             float* amb = &buffer.ambient[local * 3];
             amb[0] += a.x; amb[1] += a.y; amb[2] += a.z;
         }
-        direct_light(p, hit_t, nf, nm, back_ns, rng, [&](Vec3) { return f; });
+        direct_light(p, hit_t, nf, nm, back_ns, rng, [&](Vec3, float) { return f; });
     }
 
     // Direct light at p: one shadow ray per light, arriving after the light-to-point length;
-    // weight(to_light) turns the irradiance (cosine on ns included) into the pixel's radiance.
+    // weight(to_light, the sample's solid-angle density) turns the irradiance (cosine on ns included) into the pixel's radiance.
     template <class Weight>
     void direct_light(Vec3 p, float hit_t, Vec3 nf, Vec3 ns, double back_ns, Rng& rng, Weight&& weight) {
         Vec3 origin = p + nf * ray_epsilon(p, hit_t);  // the hit's error grows with the ray's length
@@ -299,7 +350,7 @@ struct PixelTracer {
             if (ctx.geometry.occluded(origin, s.to_light, 0, s.distance * (1 - 1e-4f))) continue;
             Vec3 e = s.irradiance;
             if (medium) e *= medium->transmittance(origin, s.to_light, s.distance);
-            deposit(buffer, deposits, ctx.timeline, local, t, weight(s.to_light) * e);
+            deposit(buffer, deposits, ctx.timeline, local, t, weight(s.to_light, s.pdf) * e);
         }
     }
 
@@ -323,7 +374,7 @@ struct PixelTracer {
         const LocalFrame frame(nm);
         const Vec3 wo = frame.local(-d);
         direct_light(hit.position, hit.t, nf, nm, back_ns, rng,
-                     [&](Vec3 wi) { return beta * bsdf::eval(b, wo, frame.local(wi)); });
+                     [&](Vec3 wi, float) { return beta * bsdf::eval(b, wo, frame.local(wi)); });
     }
 };
 

@@ -40,6 +40,10 @@ struct RenderContext {
     // true: the estimator before it, every volume photon stored and the camera pass sampling
     // no light in the medium; kept only so that tests can compare the two (not a scene key).
     bool single_scatter_by_photons = false;
+    // true (always, for the program): at a glossy vertex camera paths follow, direct light is
+    // the light samples and the followed direction's hits on emitters, weighed by the power
+    // heuristic (camera_pass.cpp). false: light samples alone; kept for tests that compare.
+    bool glossy_mis = true;
     // Image positions (pixel units) of the point and spot lights inside the medium in front of
     // the camera: the pixels round them sample their rays towards them (camera_pass.cpp).
     std::vector<std::array<float, 2>> light_images;
