@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <ctime>
+#include <vector>
 #if defined(__x86_64__) || defined(__i386__)
 #include <x86intrin.h>
 #endif
@@ -75,26 +76,17 @@ struct PixelTracer {
     BeamCounters beam{};
     SingleScatterCounters single{};
     uint64_t rays = 0;
-    // The pixel's path, for the estimates at its end.
-    VisiblePoint vp{};
-    bool has_visible_point = false;
+    // The pixel's visible points this pass, for the estimates at the paths' ends (one, or one
+    // per branch of a split path; reused from pixel to pixel, so no allocation per path).
+    std::vector<VisiblePoint> points;
     bool timed = false;               // count the cycles spent on in-scattering for this pixel
     uint64_t medium_cycles = 0;       // of this pixel (when timed)
 
     size_t local = 0;  // the pixel's index in the buffer (its own, or its rank's share)
 
-    // `pixel`: in the image (it picks the random stream and the ray); `local_pixel`: in the buffer.
-    void trace(size_t pixel, size_t local_pixel) {
-        local = local_pixel;
-        has_visible_point = false;
-        medium_cycles = 0;
-        const RenderDesc& settings = ctx.render;
-        Rng rng(settings.seed, 1, static_cast<uint64_t>(pass), pixel);
-        float fx = static_cast<float>(pixel % ctx.width), fy = static_cast<float>(pixel / ctx.width);
-        float weight = 1;
-        if (!jitter(pixel, fx, fy, rng, weight)) return;
-        Vec3 o = ctx.camera.position(), d = ctx.camera.direction(fx, fy);
-        Vec3 beta(weight);
+    // A camera path between two vertices.
+    struct PathState {
+        Vec3 o, d, beta;
         double leg_ns = 0;  // camera leg so far, in ns (light crosses glass at c/n)
         bool inside = false;
         float inside_ior = 1;
@@ -108,28 +100,52 @@ struct PixelTracer {
         // This leg leaves a followed glossy vertex at max_depth: it is traced only for the
         // emitter it may meet (that vertex's direct light, by multiple importance sampling).
         bool last_leg = false;
-        has_visible_point = false;
+        // The path has not split yet (RenderContext::glossy_split); a branch's share of the
+        // pixel's pass: its visible point's weight in the radius's statistics.
+        bool may_split = true;
+        float share = 1;
+    };
+
+    // `pixel`: in the image (it picks the random stream and the ray); `local_pixel`: in the buffer.
+    void trace(size_t pixel, size_t local_pixel) {
+        local = local_pixel;
+        points.clear();
         medium_cycles = 0;
+        Rng rng(ctx.render.seed, 1, static_cast<uint64_t>(pass), pixel);
+        float fx = static_cast<float>(pixel % ctx.width), fy = static_cast<float>(pixel / ctx.width);
+        float weight = 1;
+        if (!jitter(pixel, fx, fy, rng, weight)) return;
+        PathState st;
+        st.o = ctx.camera.position();
+        st.d = ctx.camera.direction(fx, fy);
+        st.beta = Vec3(weight);
+        walk(st, rng);
+    }
+
+    // Follows the path from st's leg to its end (a visible point, an emitter, nothing).
+    void walk(PathState st, Rng& rng) {
+        const RenderDesc& settings = ctx.render;
         const bool tof = settings.camera_tof;
         for (;;) {
             SurfaceHit hit;
             ++rays;
-            const bool found = ctx.geometry.intersect(o, d, tnear, 1e30f, hit);
+            const Vec3 o = st.o, d = st.d;
+            const bool found = ctx.geometry.intersect(o, d, st.tnear, 1e30f, hit);
             // Dielectric solids hold no medium: only pieces outside them cross it.
-            if (medium && !inside) {
-                if (last_leg)
-                    beta *= medium->transmittance(o, d, found ? hit.t : 1e30f);  // nothing scatters beyond the cap
+            if (medium && !st.inside) {
+                if (st.last_leg)
+                    st.beta *= medium->transmittance(o, d, found ? hit.t : 1e30f);  // nothing scatters beyond the cap
                 else
-                    cross_medium(o, d, tnear, found ? hit.t : 1e30f, leg_ns, specular, beta, rng);
+                    cross_medium(o, d, st.tnear, found ? hit.t : 1e30f, st.leg_ns, st.specular, st.beta, rng);
             }
             if (!found) return;
-            leg_ns += hit.t * (inside ? inside_ior : 1.0f) / kSpeedOfLight;
+            st.leg_ns += hit.t * (st.inside ? st.inside_ior : 1.0f) / kSpeedOfLight;
+            const double at_ns = tof ? st.leg_ns : 0.0;
             if (hit.light >= 0) {  // an emitter seen directly (or through specular surfaces)
                 const size_t l = static_cast<size_t>(hit.light);
-                const float share = direct_done ? mis.share(ctx.lights.quad_pdf(l, d, hit.t)) : 1.0f;
+                const float share = st.direct_done ? st.mis.share(ctx.lights.quad_pdf(l, d, hit.t)) : 1.0f;
                 if (share > 0 && ctx.lights.quad_front_seen(l, d))
-                    deposit(buffer, deposits, ctx.timeline, local, tof ? leg_ns : 0.0,
-                            beta * ctx.lights.quad_radiance(l) * share);
+                    deposit(buffer, deposits, ctx.timeline, local, at_ns, st.beta * ctx.lights.quad_radiance(l) * share);
                 return;
             }
             const SurfaceMaterial& m = ctx.materials[hit.material];
@@ -137,21 +153,21 @@ struct PixelTracer {
             Vec3 nf = toward ? hit.normal : -hit.normal;
             if (m.emits()) {  // an emissive mesh seen directly (or through specular surfaces)
                 const float share =
-                    direct_done
-                        ? mis.share(ctx.lights.emitter_pdf(ctx.scene.materials[static_cast<size_t>(hit.material)], d,
-                                                           hit.normal, hit.t))
+                    st.direct_done
+                        ? st.mis.share(ctx.lights.emitter_pdf(ctx.scene.materials[static_cast<size_t>(hit.material)], d,
+                                                              hit.normal, hit.t))
                         : 1.0f;
                 Vec3 le = share > 0 ? emission_at(m, hit, d) : Vec3(0);
-                if (!is_black(le)) deposit(buffer, deposits, ctx.timeline, local, tof ? leg_ns : 0.0, beta * le * share);
+                if (!is_black(le)) deposit(buffer, deposits, ctx.timeline, local, at_ns, st.beta * le * share);
             }
-            if (last_leg) return;
+            if (st.last_leg) return;
             if (m.type == MaterialType::Diffuse) {
                 Vec3 ns = toward ? hit.shading_normal : -hit.shading_normal;
                 const Vec3 nm = m.normal_texture ? shading_normal_facing(m, hit, d) : ns;
-                store_visible_point(pixel, hit.position, hit.t, nf, ns, nm, beta * albedo_at(m, hit), leg_ns, specular, rng);
+                store_visible_point(hit.position, hit.t, nf, ns, nm, st.beta * albedo_at(m, hit), st, rng);
                 return;
             }
-            direct_done = false;
+            st.direct_done = false;
             bsdf::Bsdf b;  // GGX: the BSDF at the hit (textures applied)
             GlossyUse use = GlossyUse::None;
             if (m.glossy != GlossyUse::None) {
@@ -161,47 +177,74 @@ struct PixelTracer {
             if (use == GlossyUse::Gather) {
                 Vec3 ns = toward ? hit.shading_normal : -hit.shading_normal;
                 const Vec3 nm = m.normal_texture ? shading_normal_facing(m, hit, d) : ns;
-                store_glossy_point(hit, b, nf, ns, nm, d, beta, leg_ns, specular, rng);
+                store_glossy_point(hit, b, nf, ns, nm, d, st, rng);
                 return;
             }
-            Vec3 w;
-            if (use == GlossyUse::Follow) {
-                // Direct light here (f(wo, wi) |cos|), on the outside of a surface with an
-                // inside; then on along a sampled direction, counted as a bounce.
-                const Vec3 n_out = frame_normal(m, b, hit, d, inside);
-                const Vec3 nf_out = has_inside(b) && inside ? -nf : nf;
-                const LocalFrame frame(n_out);
-                const Vec3 wo = frame.local(-d);
-                // At max_depth the path still draws its direction, for the emitter it may meet.
-                const bool weigh = ctx.glossy_mis;
-                direct_light(hit.position, hit.t, nf_out, n_out, tof ? leg_ns : 0.0, rng, [&](Vec3 wi, float light_pdf) {
-                    const Vec3 wl = frame.local(wi);
-                    // light_pdf 0: a point, spot or sun, which no drawn direction meets: all its own.
-                    const float share = weigh && light_pdf > 0 ? power_heuristic(light_pdf, bsdf::pdf(b, wo, wl)) : 1.0f;
-                    return beta * bsdf::eval(b, wo, wl) * share;
-                });
-                last_leg = ++specular >= settings.max_depth;
-                if (last_leg && !weigh) return;
-                float pdf = 0;
-                w = follow_glossy(m, b, hit, o, d, inside, inside_ior, rng, bsdf::Transport::Radiance, &pdf);
-                direct_done = dot(d, nf_out) > 0;
-                // The light samples' side is also the shading normal's: beyond it they draw nothing.
-                mis = MisLeg{pdf, weigh, dot(d, n_out) > 0};
-            } else {
-                if (++specular >= settings.max_depth) return;
-                w = follow_specular(m, hit, o, d, inside, inside_ior, rng);
+            if (use != GlossyUse::Follow) {
+                if (++st.specular >= settings.max_depth) return;
+                const Vec3 w = follow_specular(m, hit, st.o, st.d, st.inside, st.inside_ior, rng);
+                if (!go_on(st, w, rng)) return;
+                continue;
             }
-            beta *= w;
-            tnear = 0;
-            if (is_black(beta)) return;
-            // Russian roulette from the third specular bounce on, on the event's weight (clear
-            // glass and perfect mirrors weigh 1 and are never cut: max_depth is their cap).
-            const float q = specular >= 3 ? std::min(1.0f, max_component(w)) : 1.0f;
-            if (q < 1) {
-                if (rng.uniform() >= q) return;
-                beta = beta * (1.0f / q);
+            // Direct light here (f(wo, wi) |cos|), on the outside of a surface with an inside;
+            // then on along sampled directions (n of them where the path splits), each a bounce.
+            const int n = st.may_split ? std::max(1, ctx.glossy_split) : 1;
+            const Vec3 n_out = frame_normal(m, b, hit, d, st.inside);
+            const Vec3 nf_out = has_inside(b) && st.inside ? -nf : nf;
+            const LocalFrame frame(n_out);
+            const Vec3 wo = frame.local(-d);
+            // At max_depth the path still draws its direction, for the emitter it may meet.
+            const bool weigh = ctx.glossy_mis;
+            const Vec3 beta = st.beta;
+            direct_light(hit.position, hit.t, nf_out, n_out, at_ns, rng, [&](Vec3 wi, float light_pdf) {
+                const Vec3 wl = frame.local(wi);
+                // light_pdf 0: a point, spot or sun, which no drawn direction meets: all its own.
+                // n drawn directions weigh as one of n times the density.
+                const float share =
+                    weigh && light_pdf > 0 ? power_heuristic(light_pdf, n * bsdf::pdf(b, wo, wl)) : 1.0f;
+                return beta * bsdf::eval(b, wo, wl) * share;
+            });
+            st.last_leg = ++st.specular >= settings.max_depth;
+            if (st.last_leg && !weigh) return;
+            if (n > 1) {  // the branches, each with 1/n of the path's weight, and done
+                for (int k = 0; k < n; ++k) {
+                    PathState branch = st;
+                    branch.may_split = false;
+                    branch.beta = st.beta * (1.0f / static_cast<float>(n));
+                    branch.share = st.share / static_cast<float>(n);
+                    if (follow(branch, m, b, hit, nf_out, n_out, n, weigh, rng)) walk(branch, rng);
+                }
+                return;
             }
+            if (!follow(st, m, b, hit, nf_out, n_out, 1, weigh, rng)) return;
         }
+    }
+
+    // The path on from a followed glossy vertex along a sampled direction (one of n drawn
+    // there); false when it ends.
+    bool follow(PathState& st, const SurfaceMaterial& m, const bsdf::Bsdf& b, const SurfaceHit& hit, Vec3 nf_out,
+                Vec3 n_out, int n, bool weigh, Rng& rng) {
+        float pdf = 0;
+        const Vec3 w = follow_glossy(m, b, hit, st.o, st.d, st.inside, st.inside_ior, rng, bsdf::Transport::Radiance, &pdf);
+        st.direct_done = dot(st.d, nf_out) > 0;
+        // The light samples' side is also the shading normal's: beyond it they draw nothing.
+        st.mis = MisLeg{n * pdf, weigh, dot(st.d, n_out) > 0};
+        return go_on(st, w, rng);
+    }
+
+    // The throughput after a bounce of weight w, and Russian roulette from the third specular
+    // bounce on, on the event's weight (clear glass and perfect mirrors weigh 1 and are never
+    // cut: max_depth is their cap). False when the path ends.
+    bool go_on(PathState& st, Vec3 w, Rng& rng) {
+        st.beta *= w;
+        st.tnear = 0;
+        if (is_black(st.beta)) return false;
+        const float q = st.specular >= 3 ? std::min(1.0f, max_component(w)) : 1.0f;
+        if (q < 1) {
+            if (rng.uniform() >= q) return false;
+            st.beta = st.beta * (1.0f / q);
+        }
+        return true;
     }
 
     // The ray's point in the pixel (x, y): uniform, except in the pixels within kStratified
@@ -311,14 +354,15 @@ struct PixelTracer {
 
     // nf: the geometric normal facing the path (ray offsets, side tests); ns: the shading
     // normal on the same side (gathering); nm: ns with the material's normal map (the BRDF's cosines).
-    void store_visible_point(size_t pixel, Vec3 p, float hit_t, Vec3 nf, Vec3 ns, Vec3 nm, Vec3 albedo_beta,
-                             double leg_ns, int specular, Rng& rng) {
+    void store_visible_point(Vec3 p, float hit_t, Vec3 nf, Vec3 ns, Vec3 nm, Vec3 albedo_beta, const PathState& st,
+                             Rng& rng) {
         const RenderDesc& settings = ctx.render;
         const bool tof = settings.camera_tof;
-        const double back_ns = tof ? leg_ns : 0.0;
+        const double back_ns = tof ? st.leg_ns : 0.0;
         Vec3 f = albedo_beta * (1.0f / kPi);  // Lambertian BRDF times camera throughput
-        vp = VisiblePoint{p, ns, f, back_ns, static_cast<uint32_t>(settings.max_depth - specular)};
-        has_visible_point = true;
+        VisiblePoint& vp = points.emplace_back();
+        vp = VisiblePoint{p, ns, f, back_ns, static_cast<uint32_t>(settings.max_depth - st.specular)};
+        vp.share = st.share;
         if (!buffer.ambient.empty()) {
             Vec3 a = albedo_beta * settings.ambient;
             float* amb = &buffer.ambient[local * 3];
@@ -357,15 +401,17 @@ struct PixelTracer {
     // A visible point on a GGX surface that gathers (docs/materials.md): the throughput and the
     // BSDF at the point, evaluated for each light sample and, in the gather, for each photon.
     void store_glossy_point(const SurfaceHit& hit, const bsdf::Bsdf& b, Vec3 nf, Vec3 ns, Vec3 nm, Vec3 d,
-                            Vec3 beta, double leg_ns, int specular, Rng& rng) {
+                            const PathState& st, Rng& rng) {
         const RenderDesc& settings = ctx.render;
-        const double back_ns = settings.camera_tof ? leg_ns : 0.0;
-        vp = VisiblePoint{hit.position, ns, beta, back_ns, static_cast<uint32_t>(settings.max_depth - specular)};
+        const double back_ns = settings.camera_tof ? st.leg_ns : 0.0;
+        const Vec3 beta = st.beta;
+        VisiblePoint& vp = points.emplace_back();
+        vp = VisiblePoint{hit.position, ns, beta, back_ns, static_cast<uint32_t>(settings.max_depth - st.specular)};
+        vp.share = st.share;
         vp.glossy = true;
         vp.bsdf = b;
         vp.wo = -d;
         vp.bsdf_normal = nm;
-        has_visible_point = true;
         if (!buffer.ambient.empty()) {
             Vec3 a = beta * b.base * settings.ambient;
             float* amb = &buffer.ambient[local * 3];
@@ -404,8 +450,8 @@ CameraPassTimes camera_pass(const RenderContext& ctx, int pass, const PassPhoton
                 const uint64_t c0 = timed ? cycle_clock() : 0;
                 tracer.trace(share.global(p), p);
                 const uint64_t c1 = timed ? cycle_clock() : 0;
-                if (tracer.has_visible_point)
-                    gather_surface_at(ctx, tracer.vp, photons.surface, photons.emitted, p, buffer, deposits);
+                for (const VisiblePoint& vp : tracer.points)
+                    gather_surface_at(ctx, vp, photons.surface, photons.emitted, p, buffer, deposits);
                 w.max_r2 = std::max(w.max_r2, buffer.radius2[p]);
                 if (timed) {
                     const uint64_t c2 = cycle_clock();

@@ -44,6 +44,11 @@ struct RenderContext {
     // the light samples and the followed direction's hits on emitters, weighed by the power
     // heuristic (camera_pass.cpp). false: light samples alone; kept for tests that compare.
     bool glossy_mis = true;
+    // A camera path splits into this many at its first followed glossy vertex (rough glass,
+    // smooth metals), each branch with 1/n of its weight: the light through a sharp lobe varies
+    // from direction to direction far more than elsewhere, and camera paths cost little next to
+    // the photons. 1: no split (tests that compare).
+    int glossy_split = 8;
     // Image positions (pixel units) of the point and spot lights inside the medium in front of
     // the camera: the pixels round them sample their rays towards them (camera_pass.cpp).
     std::vector<std::array<float, 2>> light_images;

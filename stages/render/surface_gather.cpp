@@ -53,8 +53,9 @@ uint32_t gather_with(const RenderContext& ctx, const VisiblePoint& vp, const Pho
     if (found > 0) {
         const float alpha = ctx.render.alpha;
         const double count = buffer.photon_count[pixel];
-        const double count_new = count + alpha * found;
-        r2 *= count_new / (count + found);
+        const float m = static_cast<float>(found) * vp.share;  // = found, exactly as before, unsplit
+        const double count_new = count + alpha * m;
+        r2 *= count_new / (count + m);
         buffer.photon_count[pixel] = count_new;
     }
     return found;

@@ -27,6 +27,11 @@ struct VisiblePoint {
     bsdf::Bsdf bsdf;      // GGX: the BSDF at the point (textures applied)
     Vec3 wo;              // GGX: unit, towards the camera
     Vec3 bsdf_normal;     // GGX: the BSDF frame's +z, `normal` with the material's normal map
+    // The point's share of its pixel's pass: 1, or 1/n for each of the n branches of a camera
+    // path split at a glossy vertex (its weight already carries it); the photons it finds
+    // count by it in the radius's statistics, so that a split pixel's radius shrinks as one
+    // path's would.
+    float share = 1;
 };
 
 // Adds `photons`' estimate at `vp` to pixel `pixel` of `buffer` (flux / (pi R^2 emitted)), through
