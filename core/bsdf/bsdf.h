@@ -21,6 +21,7 @@
 #include "core/bsdf/fresnel.h"
 #include "core/bsdf/ggx.h"
 #include "core/bsdf/microfacet.h"
+#include "core/bsdf/principled_v1_glass.h"
 #include "foundation/constants.h"
 #include "foundation/vec3.h"
 
@@ -33,8 +34,9 @@ struct Bsdf {
     Vec3 base{0.8f};         // Lambert: albedo; conductor: F0 (Schlick); metallic-roughness: base colour
     Vec3 eta, k;             // conductor with a complex index (when complex_ior)
     bool complex_ior = false;
-    // Metallic-roughness: the diffuse base as Blender 3.x's Cycles draws it, without the
-    // energy-conserving cap (mr_diffuse; "principled": "blender3").
+    // Metallic-roughness: the diffuse base and the glass (transmission) as Blender 3.x's Cycles
+    // draws them, without the energy-conserving cap (mr_diffuse) and with Cycles 3.4's glass
+    // (principled_v1_glass.h) ("principled": "blender3").
     bool blender3_base = false;
     float alpha = 0.25f;     // GGX alpha (roughness^2)
     float ior = 1.5f;        // rough dielectric, metallic-roughness: index inside / outside
@@ -186,6 +188,26 @@ inline float mr_reflect_share(const Bsdf& b, float cos_h, float eta) {
     return r + t > 0 ? r / (r + t) : 1.0f;
 }
 
+// Blender 3.x's glass (blender3_base with transmission, principled_v1_glass.h): the glass
+// closure's weight (1 - metallic) transmission; the specular layer keeps the rest.
+inline bool v1_glass(const Bsdf& b) {
+    return b.kind == Kind::MetallicRoughness && b.blender3_base && b.transmission > 0;
+}
+inline float v1_glass_weight(const Bsdf& b) { return (1 - b.metallic) * b.transmission; }
+
+// Its lobe choice at wo (wo.z > 0): the specular layer, the diffuse base and the glass by their
+// rough albedos at wo. The glass keeps at least a tenth of its weight: photons read its Fresnel
+// at wi, and a black base still reflects.
+inline LobeChoice v1_lobes(const Bsdf& b, Vec3 wo, float eta) {
+    const float wg = v1_glass_weight(b), f = fresnel_dielectric(wo.z, eta), base = std::max(0.0f, luminance(b.base));
+    const float s = (1 - wg) * luminance(mr_specular_fresnel(b, wo.z, eta));
+    const float d = (1 - b.metallic) * (1 - b.transmission) * base;
+    const float t = wg * std::max(0.1f, f + (1 - f) * base);
+    const float sum = s + d + t;
+    if (!(sum > 0)) return {0, 0, 0};
+    return {s / sum, d / sum, t / sum};
+}
+
 // --- eval ------------------------------------------------------------------------------------
 
 // The frame a BSDF is evaluated in: two-sided kinds mirror both directions when wo is below.
@@ -234,6 +256,15 @@ inline Vec3 eval(const Bsdf& b, Vec3 wo, Vec3 wi, Transport mode = Transport::Ra
     }
     case Kind::MetallicRoughness: {
         // Here wo.z > 0; ior is the index across the interface from wo's side.
+        if (v1_glass(b)) {  // Cycles 3.4: specular layer (1 - wg), diffuse, glass wg
+            const float wg = v1_glass_weight(b);
+            Vec3 f = v1_glass_eval(g, wo, wi, b.ior, b.base, mode) * wg;
+            if (wi.z <= 0) return f;
+            const float lobe = ggx_reflection(g, wo, wi, wm);
+            if (lobe > 0) f += mr_specular_fresnel(b, dot(wo, wm), b.ior) * (lobe * (1 - wg));
+            const float kd = (1 - b.metallic) * (1 - b.transmission);
+            return kd > 0 ? f + mr_diffuse(b, wo, wi) * (kd / kPi) : f;
+        }
         if (wi.z > 0) {
             const float lobe = ggx_reflection(g, wo, wi, wm);
             Vec3 f = lobe == 0 ? Vec3(0) : mr_specular_fresnel(b, dot(wo, wm), b.ior) * lobe;
@@ -252,14 +283,15 @@ inline Vec3 eval(const Bsdf& b, Vec3 wo, Vec3 wi, Transport mode = Transport::Ra
 
 // --- pdf -------------------------------------------------------------------------------------
 
-inline float pdf(const Bsdf& b, Vec3 wo, Vec3 wi) {
+// mode: Blender 3.x's glass draws differently for photons (principled_v1_glass.h).
+inline float pdf(const Bsdf& b, Vec3 wo, Vec3 wi, Transport mode = Transport::Radiance) {
     if (wo.z == 0 || wi.z == 0) return 0;
     if (wo.z < 0 && b.kind != Kind::RoughDielectric) {
         Bsdf inv = b;
         if (!two_sided(b)) inv.ior = 1 / b.ior;
         wo.z = -wo.z;
         wi.z = -wi.z;
-        return pdf(inv, wo, wi);
+        return pdf(inv, wo, wi, mode);
     }
     const Ggx g{b.alpha};
     Vec3 wm;
@@ -281,6 +313,15 @@ inline float pdf(const Bsdf& b, Vec3 wo, Vec3 wi) {
         return ggx_transmission_pdf(g, wo, wi, wm, etap) * t;
     }
     case Kind::MetallicRoughness: {
+        if (v1_glass(b)) {  // the specular layer and the glass's reflection share GGX's draw
+            const LobeChoice p = v1_lobes(b, wo, b.ior);
+            float r = p.trans * v1_glass_pdf(g, wo, wi, b.ior, mode);
+            if (wi.z > 0) {
+                if (ggx_reflection(g, wo, wi, wm) > 0) r += p.spec * ggx_reflection_pdf(g, wo, wm);
+                r += p.diffuse * wi.z / kPi;
+            }
+            return r;
+        }
         const LobeChoice p = mr_lobes(b, wo, b.ior);
         if (b.transmission > 0) {  // one microfacet draw for both, split at the microfacet
             const float pd = p.spec + p.trans;
@@ -317,7 +358,7 @@ inline Sample sample(const Bsdf& b, Vec3 wo, float uc, float u1, float u2, Trans
     const Ggx g{b.alpha};
     Vec3 wi;
     auto finish = [&](Vec3 w) {
-        s.pdf = pdf(b, wo, w);
+        s.pdf = pdf(b, wo, w, mode);
         if (!(s.pdf > 0)) return s;
         s.wi = w;
         s.weight = eval(b, wo, w, mode) * (std::abs(w.z) / s.pdf);
@@ -351,6 +392,19 @@ inline Sample sample(const Bsdf& b, Vec3 wo, float uc, float u1, float u2, Trans
     }
     case Kind::MetallicRoughness: {
         const float eta = (two_sided(b) || side > 0) ? b.ior : 1 / b.ior;
+        if (v1_glass(b)) {
+            const LobeChoice p = v1_lobes(b, o, eta);
+            if (p.spec + p.diffuse + p.trans <= 0) return s;
+            if (uc < p.diffuse) {
+                wi = cosine();
+            } else if (uc < p.diffuse + p.spec) {
+                wi = reflect_about(o, g.sample_visible(o, u1, u2));
+                if (wi.z <= 0) return s;  // reflected through the macro-surface: lost
+            } else if (!v1_glass_sample(g, o, eta, mode, (uc - p.diffuse - p.spec) / p.trans, u1, u2, wi)) {
+                return s;
+            }
+            break;
+        }
         const LobeChoice p = mr_lobes(b, o, eta);
         if (p.spec + p.diffuse + p.trans <= 0) return s;
         if (!two_sided(b)) {  // with transmission: diffuse, or a microfacet that reflects or transmits
