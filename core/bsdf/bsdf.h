@@ -13,6 +13,8 @@
 // Transport: camera paths carry radiance, photons carry flux (importance transport, Veach
 // 1997 ch. 5): refraction scales radiance by the squared ratio of indices and flux not, so
 // transmission's f differs by that factor between the two (f_importance(wo, wi) = f_radiance(wi, wo)).
+// Blender 3.x's glass (principled_v1_glass.h) differs between them also in the direction its one
+// Fresnel reads, so pdf and sample take the mode too.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
