@@ -13,6 +13,8 @@
 // Transport: camera paths carry radiance, photons carry flux (importance transport, Veach
 // 1997 ch. 5): refraction scales radiance by the squared ratio of indices and flux not, so
 // transmission's f differs by that factor between the two (f_importance(wo, wi) = f_radiance(wi, wo)).
+// Blender 3.x's glass (principled_v1_glass.h) differs between them also in the direction its one
+// Fresnel reads, so pdf and sample take the mode too.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -20,21 +22,23 @@
 
 #include "core/bsdf/fresnel.h"
 #include "core/bsdf/ggx.h"
+#include "core/bsdf/microfacet.h"
+#include "core/bsdf/principled_v1_glass.h"
 #include "foundation/constants.h"
 #include "foundation/vec3.h"
 
 namespace sl::bsdf {
 
 enum class Kind : uint8_t { Lambert, Conductor, RoughDielectric, MetallicRoughness };
-enum class Transport : uint8_t { Radiance, Importance };
 
 struct Bsdf {
     Kind kind = Kind::Lambert;
     Vec3 base{0.8f};         // Lambert: albedo; conductor: F0 (Schlick); metallic-roughness: base colour
     Vec3 eta, k;             // conductor with a complex index (when complex_ior)
     bool complex_ior = false;
-    // Metallic-roughness: the diffuse base as Blender 3.x's Cycles draws it, without the
-    // energy-conserving cap (mr_diffuse; "principled": "blender3").
+    // Metallic-roughness: the diffuse base and the glass (transmission) as Blender 3.x's Cycles
+    // draws them, without the energy-conserving cap (mr_diffuse) and with Cycles 3.4's glass
+    // (principled_v1_glass.h) ("principled": "blender3").
     bool blender3_base = false;
     float alpha = 0.25f;     // GGX alpha (roughness^2)
     float ior = 1.5f;        // rough dielectric, metallic-roughness: index inside / outside
@@ -57,59 +61,7 @@ struct Sample {
 
 // --- helpers ---------------------------------------------------------------------------------
 
-inline Vec3 reflect_about(Vec3 wo, Vec3 n) { return n * (2 * dot(wo, n)) - wo; }
-
-// Refraction of wo through a surface of normal n (wo on either side); eta = n_other / n_wo-side
-// relative to n's side. False on total internal reflection. etap: the index ratio used.
-inline bool refract_about(Vec3 wo, Vec3 n, float eta, Vec3& wt, float& etap) {
-    float cos_i = dot(n, wo);
-    if (cos_i < 0) { eta = 1 / eta; cos_i = -cos_i; n = -n; }
-    const float sin2_t = std::max(0.0f, 1 - cos_i * cos_i) / (eta * eta);
-    if (sin2_t >= 1) return false;
-    const float cos_t = std::sqrt(1 - sin2_t);
-    wt = -wo / eta + n * (cos_i / eta - cos_t);
-    etap = eta;
-    return true;
-}
-
 inline float luminance(Vec3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
-
-// The GGX reflection lobe without Fresnel: D G2 / (4 cos_o cos_i), and its sampling density
-// (both directions on the +z side).
-inline float ggx_reflection(const Ggx& g, Vec3 wo, Vec3 wi, Vec3& wm) {
-    if (wo.z <= 0 || wi.z <= 0) return 0;
-    wm = wo + wi;
-    if (dot(wm, wm) == 0) return 0;
-    wm = normalize(wm);
-    return g.d(wm) * g.g2(wo, wi) / (4 * wo.z * wi.z);
-}
-inline float ggx_reflection_pdf(const Ggx& g, Vec3 wo, Vec3 wm) {
-    const float c = dot(wo, wm);
-    return c > 0 ? g.d_visible(wo, wm) / (4 * c) : 0;
-}
-
-// The half vector of a refraction pair (wo outside-side per etap), oriented to +z; false when
-// the pair cannot be a refraction through a front-facing microfacet.
-inline bool refraction_half_vector(Vec3 wo, Vec3 wi, float etap, Vec3& wm) {
-    wm = wi * etap + wo;
-    if (wi.z == 0 || wo.z == 0 || dot(wm, wm) == 0) return false;
-    wm = normalize(wm);
-    if (wm.z < 0) wm = -wm;
-    return dot(wm, wi) * wi.z > 0 && dot(wm, wo) * wo.z > 0;
-}
-
-// GGX transmission without the (1 - F) factor, radiance or importance; etap as above.
-inline float ggx_transmission(const Ggx& g, Vec3 wo, Vec3 wi, Vec3 wm, float etap, Transport mode) {
-    const float a = dot(wi, wm) + dot(wo, wm) / etap;
-    const float denom = a * a * wi.z * wo.z;
-    float f = g.d(wm) * g.g2(wo, wi) * std::abs(dot(wi, wm) * dot(wo, wm) / denom);
-    if (mode == Transport::Radiance) f /= etap * etap;
-    return f;
-}
-inline float ggx_transmission_pdf(const Ggx& g, Vec3 wo, Vec3 wi, Vec3 wm, float etap) {
-    const float a = dot(wi, wm) + dot(wo, wm) / etap;
-    return g.d_visible(wo, wm) * std::abs(dot(wi, wm)) / (a * a);
-}
 
 // Metallic-roughness: the probabilities of its three lobes (specular reflection, diffuse,
 // transmission) at wo (wo.z > 0 in the frame it is evaluated in), from their albedos' rough sizes.
@@ -238,6 +190,26 @@ inline float mr_reflect_share(const Bsdf& b, float cos_h, float eta) {
     return r + t > 0 ? r / (r + t) : 1.0f;
 }
 
+// Blender 3.x's glass (blender3_base with transmission, principled_v1_glass.h): the glass
+// closure's weight (1 - metallic) transmission; the specular layer keeps the rest.
+inline bool v1_glass(const Bsdf& b) {
+    return b.kind == Kind::MetallicRoughness && b.blender3_base && b.transmission > 0;
+}
+inline float v1_glass_weight(const Bsdf& b) { return (1 - b.metallic) * b.transmission; }
+
+// Its lobe choice at wo (wo.z > 0): the specular layer, the diffuse base and the glass by their
+// rough albedos at wo. The glass keeps at least a tenth of its weight: photons read its Fresnel
+// at wi, and a black base still reflects.
+inline LobeChoice v1_lobes(const Bsdf& b, Vec3 wo, float eta) {
+    const float wg = v1_glass_weight(b), f = fresnel_dielectric(wo.z, eta), base = std::max(0.0f, luminance(b.base));
+    const float s = (1 - wg) * luminance(mr_specular_fresnel(b, wo.z, eta));
+    const float d = (1 - b.metallic) * (1 - b.transmission) * base;
+    const float t = wg * std::max(0.1f, f + (1 - f) * base);
+    const float sum = s + d + t;
+    if (!(sum > 0)) return {0, 0, 0};
+    return {s / sum, d / sum, t / sum};
+}
+
 // --- eval ------------------------------------------------------------------------------------
 
 // The frame a BSDF is evaluated in: two-sided kinds mirror both directions when wo is below.
@@ -286,6 +258,15 @@ inline Vec3 eval(const Bsdf& b, Vec3 wo, Vec3 wi, Transport mode = Transport::Ra
     }
     case Kind::MetallicRoughness: {
         // Here wo.z > 0; ior is the index across the interface from wo's side.
+        if (v1_glass(b)) {  // Cycles 3.4: specular layer (1 - wg), diffuse, glass wg
+            const float wg = v1_glass_weight(b);
+            Vec3 f = v1_glass_eval(g, wo, wi, b.ior, b.base, mode) * wg;
+            if (wi.z <= 0) return f;
+            const float lobe = ggx_reflection(g, wo, wi, wm);
+            if (lobe > 0) f += mr_specular_fresnel(b, dot(wo, wm), b.ior) * (lobe * (1 - wg));
+            const float kd = (1 - b.metallic) * (1 - b.transmission);
+            return kd > 0 ? f + mr_diffuse(b, wo, wi) * (kd / kPi) : f;
+        }
         if (wi.z > 0) {
             const float lobe = ggx_reflection(g, wo, wi, wm);
             Vec3 f = lobe == 0 ? Vec3(0) : mr_specular_fresnel(b, dot(wo, wm), b.ior) * lobe;
@@ -304,14 +285,15 @@ inline Vec3 eval(const Bsdf& b, Vec3 wo, Vec3 wi, Transport mode = Transport::Ra
 
 // --- pdf -------------------------------------------------------------------------------------
 
-inline float pdf(const Bsdf& b, Vec3 wo, Vec3 wi) {
+// mode: Blender 3.x's glass draws differently for photons (principled_v1_glass.h).
+inline float pdf(const Bsdf& b, Vec3 wo, Vec3 wi, Transport mode = Transport::Radiance) {
     if (wo.z == 0 || wi.z == 0) return 0;
     if (wo.z < 0 && b.kind != Kind::RoughDielectric) {
         Bsdf inv = b;
         if (!two_sided(b)) inv.ior = 1 / b.ior;
         wo.z = -wo.z;
         wi.z = -wi.z;
-        return pdf(inv, wo, wi);
+        return pdf(inv, wo, wi, mode);
     }
     const Ggx g{b.alpha};
     Vec3 wm;
@@ -333,6 +315,15 @@ inline float pdf(const Bsdf& b, Vec3 wo, Vec3 wi) {
         return ggx_transmission_pdf(g, wo, wi, wm, etap) * t;
     }
     case Kind::MetallicRoughness: {
+        if (v1_glass(b)) {  // the specular layer and the glass's reflection share GGX's draw
+            const LobeChoice p = v1_lobes(b, wo, b.ior);
+            float r = p.trans * v1_glass_pdf(g, wo, wi, b.ior, mode);
+            if (wi.z > 0) {
+                if (ggx_reflection(g, wo, wi, wm) > 0) r += p.spec * ggx_reflection_pdf(g, wo, wm);
+                r += p.diffuse * wi.z / kPi;
+            }
+            return r;
+        }
         const LobeChoice p = mr_lobes(b, wo, b.ior);
         if (b.transmission > 0) {  // one microfacet draw for both, split at the microfacet
             const float pd = p.spec + p.trans;
@@ -369,7 +360,7 @@ inline Sample sample(const Bsdf& b, Vec3 wo, float uc, float u1, float u2, Trans
     const Ggx g{b.alpha};
     Vec3 wi;
     auto finish = [&](Vec3 w) {
-        s.pdf = pdf(b, wo, w);
+        s.pdf = pdf(b, wo, w, mode);
         if (!(s.pdf > 0)) return s;
         s.wi = w;
         s.weight = eval(b, wo, w, mode) * (std::abs(w.z) / s.pdf);
@@ -403,6 +394,19 @@ inline Sample sample(const Bsdf& b, Vec3 wo, float uc, float u1, float u2, Trans
     }
     case Kind::MetallicRoughness: {
         const float eta = (two_sided(b) || side > 0) ? b.ior : 1 / b.ior;
+        if (v1_glass(b)) {
+            const LobeChoice p = v1_lobes(b, o, eta);
+            if (p.spec + p.diffuse + p.trans <= 0) return s;
+            if (uc < p.diffuse) {
+                wi = cosine();
+            } else if (uc < p.diffuse + p.spec) {
+                wi = reflect_about(o, g.sample_visible(o, u1, u2));
+                if (wi.z <= 0) return s;  // reflected through the macro-surface: lost
+            } else if (!v1_glass_sample(g, o, eta, mode, (uc - p.diffuse - p.spec) / p.trans, u1, u2, wi)) {
+                return s;
+            }
+            break;
+        }
         const LobeChoice p = mr_lobes(b, o, eta);
         if (p.spec + p.diffuse + p.trans <= 0) return s;
         if (!two_sided(b)) {  // with transmission: diffuse, or a microfacet that reflects or transmits
