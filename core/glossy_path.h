@@ -6,6 +6,7 @@
 // leg's time stays its length times the index over c.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include "core/bsdf/bsdf.h"
 #include "core/material_table.h"
@@ -56,17 +57,22 @@ inline Vec3 frame_normal(const SurfaceMaterial& m, const bsdf::Bsdf& b, const Su
     return has_inside(b) && inside ? -ns : ns;
 }
 
+// The three uniform numbers a BSDF sample takes: uc picks the lobe, (u1, u2) the direction in it.
+struct BsdfDraw {
+    float uc, u1, u2;
+};
+
 // Samples the BSDF for a path arriving along d (radiance for camera paths, importance for
 // photons) and moves the path on. Returns the throughput weight f |cos| / pdf; zero when the
 // draw is lost (GGX's single-scattering loss) or would leave through the wrong side of the true
 // (geometric) surface, and the path ends. b: bsdf_at(m, hit), made once by the caller.
-// pdf (when given): the solid-angle density of the drawn direction.
+// u: the draw's numbers (uniform in [0, 1)^3). pdf (when given): the solid-angle density of the
+// drawn direction.
 inline Vec3 follow_glossy(const SurfaceMaterial& m, const bsdf::Bsdf& b, const SurfaceHit& hit, Vec3& o, Vec3& d,
-                          bool& inside, float& inside_ior, Rng& rng, bsdf::Transport mode, float* pdf = nullptr) {
+                          bool& inside, float& inside_ior, BsdfDraw u, bsdf::Transport mode, float* pdf = nullptr) {
     const LocalFrame frame(frame_normal(m, b, hit, d, inside));
     const Vec3 wo = frame.local(-d);
-    const float uc = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
-    const bsdf::Sample s = bsdf::sample(b, wo, uc, u1, u2, mode);
+    const bsdf::Sample s = bsdf::sample(b, wo, u.uc, u.u1, u.u2, mode);
     if (!s.valid) return Vec3(0);
     const Vec3 wi = normalize(frame.world(s.wi));
     const bool crossed = s.wi.z * wo.z < 0;
@@ -81,6 +87,32 @@ inline Vec3 follow_glossy(const SurfaceMaterial& m, const bsdf::Bsdf& b, const S
     d = wi;
     if (pdf) *pdf = s.pdf;
     return s.weight;
+}
+
+// The same with the numbers drawn from rng.
+inline Vec3 follow_glossy(const SurfaceMaterial& m, const bsdf::Bsdf& b, const SurfaceHit& hit, Vec3& o, Vec3& d,
+                          bool& inside, float& inside_ior, Rng& rng, bsdf::Transport mode, float* pdf = nullptr) {
+    const float uc = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
+    return follow_glossy(m, b, hit, o, d, inside, inside_ior, BsdfDraw{uc, u1, u2}, mode, pdf);
+}
+
+// The k-th of n draws that together cover [0, 1)^3 evenly (a path split in n, one draw a
+// branch): the 3-D Hammersley set (k/n, base-2 and base-3 radical inverses of k) shifted modulo
+// 1 by one random offset. Each draw is uniform on its own (the offset is), so every branch's
+// estimate keeps its mean; together they leave no lobe or part of a lobe out by chance.
+inline float radical_inverse(uint32_t k, uint32_t base) {
+    float inv = 1.0f / static_cast<float>(base), f = inv, r = 0;
+    for (; k > 0; k /= base, f *= inv) r += static_cast<float>(k % base) * f;
+    return r;
+}
+inline BsdfDraw stratified_draw(int k, int n, BsdfDraw offset) {
+    const auto wrap = [](float x) { return x >= 1.0f ? x - 1.0f : x; };
+    const uint32_t i = static_cast<uint32_t>(k);
+    const float uc = wrap(offset.uc + static_cast<float>(k) / static_cast<float>(n));
+    const float u1 = wrap(offset.u1 + radical_inverse(i, 2)), u2 = wrap(offset.u2 + radical_inverse(i, 3));
+    // Rounding can land on 1 exactly: keep every number below it.
+    const float below1 = 0x1.fffffep-1f;
+    return {std::min(uc, below1), std::min(u1, below1), std::min(u2, below1)};
 }
 
 }  // namespace sl

@@ -188,7 +188,8 @@ struct PixelTracer {
             }
             // Direct light here (f(wo, wi) |cos|), on the outside of a surface with an inside;
             // then on along sampled directions (n of them where the path splits), each a bounce.
-            const int n = st.may_split ? std::max(1, ctx.glossy_split) : 1;
+            const int split = has_inside(b) ? ctx.glossy_split_transmissive : ctx.glossy_split;
+            const int n = st.may_split ? std::max(1, split) : 1;
             const Vec3 n_out = frame_normal(m, b, hit, d, st.inside);
             const Vec3 nf_out = has_inside(b) && st.inside ? -nf : nf;
             const LocalFrame frame(n_out);
@@ -207,25 +208,30 @@ struct PixelTracer {
             st.last_leg = ++st.specular >= settings.max_depth;
             if (st.last_leg && !weigh) return;
             if (n > 1) {  // the branches, each with 1/n of the path's weight, and done
+                const BsdfDraw offset{rng.uniform(), rng.uniform(), rng.uniform()};
                 for (int k = 0; k < n; ++k) {
                     PathState branch = st;
                     branch.may_split = false;
                     branch.beta = st.beta * (1.0f / static_cast<float>(n));
                     branch.share = st.share / static_cast<float>(n);
-                    if (follow(branch, m, b, hit, nf_out, n_out, n, weigh, rng)) walk(branch, rng);
+                    const BsdfDraw u = ctx.glossy_split_stratified
+                                           ? stratified_draw(k, n, offset)
+                                           : BsdfDraw{rng.uniform(), rng.uniform(), rng.uniform()};
+                    if (follow(branch, m, b, hit, nf_out, n_out, n, weigh, u, rng)) walk(branch, rng);
                 }
                 return;
             }
-            if (!follow(st, m, b, hit, nf_out, n_out, 1, weigh, rng)) return;
+            const BsdfDraw u{rng.uniform(), rng.uniform(), rng.uniform()};
+            if (!follow(st, m, b, hit, nf_out, n_out, 1, weigh, u, rng)) return;
         }
     }
 
-    // The path on from a followed glossy vertex along a sampled direction (one of n drawn
+    // The path on from a followed glossy vertex along a direction sampled with u (one of n drawn
     // there); false when it ends.
     bool follow(PathState& st, const SurfaceMaterial& m, const bsdf::Bsdf& b, const SurfaceHit& hit, Vec3 nf_out,
-                Vec3 n_out, int n, bool weigh, Rng& rng) {
+                Vec3 n_out, int n, bool weigh, BsdfDraw u, Rng& rng) {
         float pdf = 0;
-        const Vec3 w = follow_glossy(m, b, hit, st.o, st.d, st.inside, st.inside_ior, rng, bsdf::Transport::Radiance, &pdf);
+        const Vec3 w = follow_glossy(m, b, hit, st.o, st.d, st.inside, st.inside_ior, u, bsdf::Transport::Radiance, &pdf);
         st.direct_done = dot(st.d, nf_out) > 0;
         // The light samples' side is also the shading normal's: beyond it they draw nothing.
         st.mis = MisLeg{n * pdf, weigh, dot(st.d, n_out) > 0};

@@ -121,13 +121,15 @@ TEST(GlossyMis, RoughMetalUnderAnEmitterMatchesQuadratureWithASmallerSpread) {
 }
 
 // The camera path split at its first followed glossy vertex (RenderContext::glossy_split, the
-// program's 8): the same mean, n directions there weighed against the light sample as one
-// strategy of n times the density, and a smaller spread.
+// program's 8 at a metal): the same mean, n directions there weighed against the light sample as
+// one strategy of n times the density, and a smaller spread. The 8 draws are stratified
+// (core/glossy_path.h): the spread falls by more than 3x (8 independent draws: 0.028 against
+// the unsplit path's 0.078, 2.8x; stratified 0.018).
 TEST(GlossyMis, APathSplitAtTheGlossyVertexKeepsTheMeanWithASmallerSpread) {
     const Spread one = render_against_quadrature(true, 1), split = render_against_quadrature(true, 8);
     EXPECT_NEAR(split.ratio, 1.0, 0.01);
-    EXPECT_LT(split.rms * 1.5, one.rms);
-    std::printf("[glossy MIS, the path split in 8 at the metal] rendered / quadrature %.4f (pixels' rms error / "
+    EXPECT_LT(split.rms * 3, one.rms);
+    std::printf("[glossy MIS, the path split in 8 stratified draws at the metal] rendered / quadrature %.4f (pixels' rms error / "
                 "mean %.4f; unsplit %.4f, rms %.4f)\n",
                 split.ratio, split.rms, one.ratio, one.rms);
 }
