@@ -123,7 +123,7 @@ struct PixelTracer {
     }
 
     // Follows the path from st's leg to its end (a visible point, an emitter, nothing).
-    void walk(PathState st, Rng& rng) {
+    void walk(PathState& st, Rng& rng) {
         const RenderDesc& settings = ctx.render;
         const bool tof = settings.camera_tof;
         for (;;) {
@@ -366,9 +366,8 @@ struct PixelTracer {
         const bool tof = settings.camera_tof;
         const double back_ns = tof ? st.leg_ns : 0.0;
         Vec3 f = albedo_beta * (1.0f / kPi);  // Lambertian BRDF times camera throughput
-        VisiblePoint& vp = points.emplace_back();
-        vp = VisiblePoint{p, ns, f, back_ns, static_cast<uint32_t>(settings.max_depth - st.specular)};
-        vp.share = st.share;
+        points.push_back(VisiblePoint{p, ns, f, back_ns, static_cast<uint32_t>(settings.max_depth - st.specular)});
+        points.back().share = st.share;
         if (!buffer.ambient.empty()) {
             Vec3 a = albedo_beta * settings.ambient;
             float* amb = &buffer.ambient[local * 3];
