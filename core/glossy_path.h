@@ -50,6 +50,14 @@ inline GlossyUse glossy_use_at(const SurfaceMaterial& m, const bsdf::Bsdf& b) {
 // is then the outside, known from the path's inside flag as for smooth glass.
 inline bool has_inside(const bsdf::Bsdf& b) { return !bsdf::two_sided(b); }
 
+// A metallic-roughness surface (no transmission) whose dielectric coat is smooth enough to be
+// followed, over a diffuse base that gathers (camera_pass.cpp): the roughness below which metals
+// are followed (kFollowBelowRoughness), some base and some coat.
+inline bool smooth_coat(const bsdf::Bsdf& b) {
+    return b.kind == bsdf::Kind::MetallicRoughness && b.transmission <= 0 && b.metallic < 1 &&
+           std::sqrt(b.alpha) < kFollowBelowRoughness && bsdf::dielectric_scale(b) > 0 && max_component(b.base) > 0;
+}
+
 // The frame's +z: the shading normal (normal-mapped) on the side the path arrives from (d: its
 // direction), or on the outside for a BSDF with an inside.
 inline Vec3 frame_normal(const SurfaceMaterial& m, const bsdf::Bsdf& b, const SurfaceHit& hit, Vec3 d, bool inside) {

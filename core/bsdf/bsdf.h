@@ -50,6 +50,11 @@ struct Bsdf {
     // (layer_share) from outside and from inside, cached by cache_layer_averages for alpha
     // layer_avg_alpha (else computed when needed). Depends on ior, specular, its colour and alpha.
     float layer_avg_out = -1, layer_avg_in = -1, layer_avg_alpha = -1;
+    // Metallic-roughness without transmission: one of its two lobes left out (evaluated,
+    // drawn and its density counted as zero). Camera paths take a smooth coat's reflection by
+    // following it and the diffuse base by the gather (camera_pass.cpp): the two halves of one
+    // surface.
+    bool no_diffuse = false, no_specular = false;
 };
 
 struct Sample {
@@ -172,6 +177,8 @@ inline LobeChoice mr_lobes(const Bsdf& b, Vec3 wo, float eta) {
     // Not (1 - fo) alone: beyond the critical angle of the macro-surface (fo = 1) microfacets
     // tilted towards wo still transmit, so the lobe must keep a chance of being drawn.
     float t = (1 - b.metallic) * b.transmission * base * std::max(0.25f, 1 - fo);
+    if (b.no_specular) s = 0;
+    if (b.no_diffuse) d = 0;
     const float sum = s + d + t;
     if (!(sum > 0)) return {0, 0, 0};
     return {s / sum, d / sum, t / sum};
@@ -268,9 +275,9 @@ inline Vec3 eval(const Bsdf& b, Vec3 wo, Vec3 wi, Transport mode = Transport::Ra
             return kd > 0 ? f + mr_diffuse(b, wo, wi) * (kd / kPi) : f;
         }
         if (wi.z > 0) {
-            const float lobe = ggx_reflection(g, wo, wi, wm);
+            const float lobe = b.no_specular ? 0.0f : ggx_reflection(g, wo, wi, wm);
             Vec3 f = lobe == 0 ? Vec3(0) : mr_specular_fresnel(b, dot(wo, wm), b.ior) * lobe;
-            const float kd = (1 - b.metallic) * (1 - b.transmission);
+            const float kd = b.no_diffuse ? 0.0f : (1 - b.metallic) * (1 - b.transmission);
             if (kd <= 0) return f;
             return f + mr_diffuse(b, wo, wi) * (kd / kPi);
         }

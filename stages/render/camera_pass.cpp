@@ -177,8 +177,18 @@ struct PixelTracer {
             if (use == GlossyUse::Gather) {
                 Vec3 ns = toward ? hit.shading_normal : -hit.shading_normal;
                 const Vec3 nm = m.normal_texture ? shading_normal_facing(m, hit, d) : ns;
-                store_glossy_point(hit, b, nf, ns, nm, d, st, rng);
-                return;
+                if (!ctx.follow_coats || !smooth_coat(b)) {
+                    store_glossy_point(hit, b, nf, ns, nm, d, st, rng);
+                    return;
+                }
+                // A smooth coat over a diffuse base: the base gathers here, the coat's
+                // reflection is followed (a sharp lobe weighing the photons is what made the
+                // gather noisy), each half of the one BSDF.
+                bsdf::Bsdf base = b;
+                base.no_specular = true;
+                store_glossy_point(hit, base, nf, ns, nm, d, st, rng);
+                b.no_diffuse = true;
+                use = GlossyUse::Follow;
             }
             if (use != GlossyUse::Follow) {
                 if (++st.specular >= settings.max_depth) return;
@@ -188,7 +198,9 @@ struct PixelTracer {
             }
             // Direct light here (f(wo, wi) |cos|), on the outside of a surface with an inside;
             // then on along sampled directions (n of them where the path splits), each a bounce.
-            const int split = has_inside(b) ? ctx.glossy_split_transmissive : ctx.glossy_split;
+            const int split = b.no_diffuse  ? ctx.coat_split
+                              : has_inside(b) ? ctx.glossy_split_transmissive
+                                              : ctx.glossy_split;
             const int n = st.may_split ? std::max(1, split) : 1;
             const Vec3 n_out = frame_normal(m, b, hit, d, st.inside);
             const Vec3 nf_out = has_inside(b) && st.inside ? -nf : nf;

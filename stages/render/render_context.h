@@ -53,6 +53,11 @@ struct RenderContext {
     // meets at least one more rough interface, whose lobe multiplies the variance again, so
     // more branches (the glass cube's top: 8 left a 3.5 % spread over seeds, 32 left 2.0 %).
     int glossy_split_transmissive = 32;
+    // true (the program): a metallic-roughness surface with a smooth coat (smooth_coat in
+    // core/glossy_path.h) gathers its diffuse base and has its coat followed, in coat_split
+    // branches. false: it gathers all of it; kept for tests that compare.
+    bool follow_coats = true;
+    int coat_split = 1;
     // true (the program): the split's n draws cover the BSDF's numbers evenly (stratified_draw in
     // core/glossy_path.h), false: each drawn on its own; kept for tests that compare.
     bool glossy_split_stratified = true;

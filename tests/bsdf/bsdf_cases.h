@@ -44,6 +44,13 @@ inline std::vector<BsdfCase> bsdf_cases() {
         out.push_back({"plastic_r" + rs, m});
         m.blender3_base = true;  // "principled": "blender3": the base uncapped
         out.push_back({"plastic_blender3_r" + rs, m});
+        if (r < 0.5f) {  // the halves camera paths take apart where the coat is smooth
+            bsdf::Bsdf coat = m, base = m;
+            coat.no_diffuse = true;
+            base.no_specular = true;
+            out.push_back({"plastic_blender3_coat_alone_r" + rs, coat});
+            out.push_back({"plastic_blender3_base_alone_r" + rs, base});
+        }
         m.blender3_base = false;
         m.metallic = 0.5f;
         out.push_back({"half_metal_r" + rs, m});

@@ -107,5 +107,29 @@ TEST(BsdfSampling, SampleWeightIsEvalCosOverPdf) {
     }
 }
 
+// The coat alone and the base alone (camera paths follow the one and gather the other) are the
+// two halves of the whole: their values add up to it for every pair of directions.
+TEST(BsdfSampling, CoatAloneAndBaseAloneAddUpToTheWhole) {
+    std::mt19937_64 rng(9);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    int checked = 0;
+    for (const BsdfCase& c : bsdf_cases()) {
+        if (c.b.kind != bsdf::Kind::MetallicRoughness || c.b.transmission > 0 || c.b.no_diffuse || c.b.no_specular)
+            continue;
+        bsdf::Bsdf coat = c.b, base = c.b;
+        coat.no_diffuse = true;
+        base.no_specular = true;
+        for (Vec3 wo : incident_directions(c.b))
+            for (int i = 0; i < 500; ++i) {
+                const bsdf::Sample s = bsdf::sample(c.b, wo, u(rng), u(rng), u(rng));
+                if (!s.valid) continue;
+                const Vec3 whole = bsdf::eval(c.b, wo, s.wi), sum = bsdf::eval(coat, wo, s.wi) + bsdf::eval(base, wo, s.wi);
+                for (int ch = 0; ch < 3; ++ch) ASSERT_NEAR(sum[ch], whole[ch], 1e-5f * (1 + whole[ch])) << c.name;
+                ++checked;
+            }
+    }
+    EXPECT_GT(checked, 10000);
+}
+
 }  // namespace
 }  // namespace sl::test
