@@ -29,14 +29,6 @@ bsdf::Bsdf rough_glass() {
     return bsdf::cache_layer_averages(b);
 }
 
-double fresnel_dielectric(double cos_i, double eta) {
-    const double s2 = (1 - cos_i * cos_i) / (eta * eta);
-    if (s2 >= 1) return 1;
-    const double cos_t = std::sqrt(1 - s2);
-    const double rs = (cos_i - eta * cos_t) / (cos_i + eta * cos_t), rp = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
-    return (rs * rs + rp * rp) / 2;
-}
-
 const float kTheta = 72 * 3.14159265f / 180;
 const Vec3 kWo{std::sin(kTheta), 0, std::cos(kTheta)};
 
@@ -83,9 +75,7 @@ TEST(StratifiedDraw, EachDrawIsUniformAndStaysBelowOne) {
 TEST(StratifiedDraw, TheSplitsLobeChoiceIsStratifiedAndItsMeanKeptWithASmallerSpread) {
     const bsdf::Bsdf b = rough_glass();
     const int n = 32, trials = 4000;
-    // Cycles' glass reflects with the Fresnel at the macro-surface (printed); the share of the
-    // independent draws that reflect is the sampler's own probability.
-    const double f = fresnel_dielectric(kWo.z, 1.45);
+    // The share of the independent draws that reflect is the sampler's own probability P.
     std::mt19937 gen(11);
     double independent_reflected = 0;
     double sum[2] = {0, 0}, sq[2] = {0, 0};
@@ -111,9 +101,9 @@ TEST(StratifiedDraw, TheSplitsLobeChoiceIsStratifiedAndItsMeanKeptWithASmallerSp
     // The same mean (the independent draws' standard error sets the tolerance).
     EXPECT_NEAR(mean_s, mean_i, 4 * std::sqrt(var_i / trials));
     EXPECT_LT(var_s * 4, var_i);
-    std::printf("[stratified split, rough glass at 72 deg, n = %d] n F %.2f, n P %.2f: reflected %d-%d (independent "
+    std::printf("[stratified split, rough glass at 72 deg, n = %d] n P %.2f: reflected %d-%d (independent "
                 "%d-%d); mean weight %.4f vs %.4f, spread %.4f vs %.4f\n",
-                n, n * f, independent_reflected, reflected_min, reflected_max, independent_min, independent_max, mean_s, mean_i,
+                n, independent_reflected, reflected_min, reflected_max, independent_min, independent_max, mean_s, mean_i,
                 std::sqrt(var_s), std::sqrt(var_i));
 }
 
