@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "core/bsdf/material_bsdf.h"
+#include "core/glossy_path.h"
 #include "core/material_table.h"
 
 namespace sl::test {
@@ -46,7 +47,7 @@ TEST(MaterialGlossyUse, RulesOfTheDocsTable) {
     EXPECT_EQ(glossy_use(material(MaterialType::Conductor, 0.49f)), GlossyUse::Follow);
     EXPECT_EQ(glossy_use(material(MaterialType::Conductor, 0.5f)), GlossyUse::Gather);
     EXPECT_EQ(glossy_use(material(MaterialType::RoughDielectric, 1.0f)), GlossyUse::Follow);
-    MaterialDesc plastic = material(MaterialType::MetallicRoughness, 0.2f);  // a diffuse base: always gathers
+    MaterialDesc plastic = material(MaterialType::MetallicRoughness, 0.2f);  // a diffuse base: gathers
     EXPECT_EQ(glossy_use(plastic), GlossyUse::Gather);
     MaterialDesc metal = plastic;
     metal.metallic = 1;
@@ -58,6 +59,25 @@ TEST(MaterialGlossyUse, RulesOfTheDocsTable) {
     EXPECT_EQ(glossy_use(glass), GlossyUse::Follow);
     for (MaterialType t : {MaterialType::Diffuse, MaterialType::Mirror, MaterialType::Dielectric})
         EXPECT_EQ(glossy_use(material(t, 0.5f)), GlossyUse::None);
+}
+
+// The table's coat row: a metallic-roughness surface that gathers has its coat followed where
+// the coat is smoother than 0.5, the base is not black and it is not a metal or glass.
+TEST(MaterialGlossyUse, ASmoothCoatOverADiffuseBaseIsFollowed) {
+    bsdf::Bsdf b;
+    b.kind = bsdf::Kind::MetallicRoughness;
+    b.base = Vec3(0.8f, 0.1f, 0.1f);
+    b.alpha = bsdf::alpha_of_roughness(0.2f);
+    EXPECT_TRUE(smooth_coat(b));
+    b.alpha = bsdf::alpha_of_roughness(0.5f);  // Blender's default Principled: gathered whole
+    EXPECT_FALSE(smooth_coat(b));
+    b.alpha = bsdf::alpha_of_roughness(0.2f);
+    bsdf::Bsdf metal = b, glass = b, black = b, no_coat = b;
+    metal.metallic = 1;
+    glass.transmission = 1;
+    black.base = Vec3(0);
+    no_coat.specular = 0;  // a Lambertian surface
+    for (const bsdf::Bsdf& x : {metal, glass, black, no_coat}) EXPECT_FALSE(smooth_coat(x));
 }
 
 }  // namespace
