@@ -198,7 +198,8 @@ struct PixelTracer {
             }
             // Direct light here (f(wo, wi) |cos|), on the outside of a surface with an inside;
             // then on along sampled directions (n of them where the path splits), each a bounce.
-            const int split = b.no_diffuse  ? ctx.coat_split
+            // A followed coat goes on in one leg: more left the plastic cube's spread as it was.
+            const int split = b.no_diffuse  ? 1
                               : has_inside(b) ? ctx.glossy_split_transmissive
                                               : ctx.glossy_split;
             const int n = st.may_split ? std::max(1, split) : 1;
@@ -226,10 +227,8 @@ struct PixelTracer {
                     branch.may_split = false;
                     branch.beta = st.beta * (1.0f / static_cast<float>(n));
                     branch.share = st.share / static_cast<float>(n);
-                    const BsdfDraw u = ctx.glossy_split_stratified
-                                           ? stratified_draw(k, n, offset)
-                                           : BsdfDraw{rng.uniform(), rng.uniform(), rng.uniform()};
-                    if (follow(branch, m, b, hit, nf_out, n_out, n, weigh, u, rng)) walk(branch, rng);
+                    if (follow(branch, m, b, hit, nf_out, n_out, n, weigh, stratified_draw(k, n, offset), rng))
+                        walk(branch, rng);
                 }
                 return;
             }

@@ -44,23 +44,19 @@ struct RenderContext {
     // the light samples and the followed direction's hits on emitters, weighed by the power
     // heuristic (camera_pass.cpp). false: light samples alone; kept for tests that compare.
     bool glossy_mis = true;
-    // A camera path splits into this many at its first followed glossy vertex (smooth metals,
-    // glossy coats), each branch with 1/n of its weight: the light through a sharp lobe varies
-    // from direction to direction far more than elsewhere, and camera paths cost little next to
-    // the photons. 1: no split (tests that compare).
+    // A camera path splits into this many at its first followed glossy vertex (smooth metals),
+    // each branch with 1/n of its weight and its draw stratified (stratified_draw): the light
+    // through a sharp lobe varies from direction to direction far more than elsewhere, and
+    // camera paths cost little next to the photons. 1: no split (tests that compare).
     int glossy_split = 8;
     // The same where the vertex is a rough dielectric's (glass): a branch that enters the solid
     // meets at least one more rough interface, whose lobe multiplies the variance again, so
-    // more branches (the glass cube's top: 8 left a 3.5 % spread over seeds, 32 left 2.0 %).
+    // more branches (the glass cube's top: 8 left a 3.4 % spread over seeds, 32 stratified 1.0 %).
     int glossy_split_transmissive = 32;
     // true (the program): a metallic-roughness surface with a smooth coat (smooth_coat in
-    // core/glossy_path.h) gathers its diffuse base and has its coat followed, in coat_split
-    // branches. false: it gathers all of it; kept for tests that compare.
+    // core/glossy_path.h) gathers its diffuse base and has its coat followed in one leg.
+    // false: it gathers all of it; kept for tests that compare.
     bool follow_coats = true;
-    int coat_split = 1;
-    // true (the program): the split's n draws cover the BSDF's numbers evenly (stratified_draw in
-    // core/glossy_path.h), false: each drawn on its own; kept for tests that compare.
-    bool glossy_split_stratified = true;
     // Image positions (pixel units) of the point and spot lights inside the medium in front of
     // the camera: the pixels round them sample their rays towards them (camera_pass.cpp).
     std::vector<std::array<float, 2>> light_images;
