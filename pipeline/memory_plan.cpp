@@ -91,7 +91,8 @@ uint64_t section_buffer_bytes(const SceneDesc& scene, int sections, int ranks) {
 std::vector<std::pair<const char*, uint64_t>> MemoryBaseline::terms() const {
     return {{"program and libraries", program}, {"scene (meshes, BVH, textures, emitters)", scene},
             {"photon map (one pass)", photon_map}, {"volume photons (one pass)", volume_photons},
-            {"frames on their way out", frames},  {"video encoder", encoder}};
+            {"frames on their way out", frames},  {"video encoder", encoder},
+            {"gather radii (one a pixel)", gather_radii}};
 }
 
 MemoryBaseline memory_baseline(const SceneDesc& scene, const RunOptions& options) {
@@ -114,6 +115,9 @@ MemoryBaseline memory_baseline(const SceneDesc& scene, const RunOptions& options
     const auto count = [&](double per_path) { return static_cast<uint64_t>(std::ceil(photons * per_path * 1.02)); };
     b.photon_map = PhotonMap::bytes_needed(count(records_per_path));
     if (events_per_path > 0) b.volume_photons = VolumePhotonMap::bytes_needed(count(events_per_path));
+
+    // The automatic radius stops short of edges pixel by pixel: a float a pixel, for the run.
+    if (!(scene.render.radius > 0)) b.gather_radii = pixels * sizeof(float);
 
     // Frames on their way out, per pixel: the running sum of constant light (FrameAssembler,
     // doubles), the float frames alive at once (the two the pipeline's frames_alive limiter lets

@@ -70,9 +70,7 @@ std::unique_ptr<SectionBuffer> PipelineRun::section_buffer(Section& s, const Sec
         ++stats_.sections_resumed;
     } else {
         const auto t0 = Clock::now();
-        buffer = ex_ ? std::make_unique<SectionBuffer>(PixelShare{ex_->rank(), ex_->ranks(), ctx_.pixels()}, s.layout,
-                                                       ctx_.initial_radius, ctx_.has_ambient())
-                     : std::make_unique<SectionBuffer>(ctx_.pixels(), s.layout, ctx_.initial_radius, ctx_.has_ambient());
+        buffer = new_section_buffer(ctx_, s.layout);
         stats_.buffers += since(t0);
         if (s.layout.carried) {
             if (carry_.empty()) carry_from_disk(index);

@@ -5,6 +5,8 @@
 
 #include <stdexcept>
 
+#include "stages/render/edge_radius.h"
+
 namespace sl {
 
 namespace {
@@ -33,7 +35,8 @@ RenderContext::RenderContext(const SceneDesc& desc)
     timeline = timeline_of(desc);
     width = desc.camera.width;
     height = desc.camera.height;
-    initial_radius = desc.render.radius > 0 ? desc.render.radius : choose_initial_radius(desc, geometry, camera);
+    automatic_radius_ = !(desc.render.radius > 0);
+    initial_radius = automatic_radius_ ? choose_initial_radius(desc, geometry, camera) : desc.render.radius;
     if (desc.medium.present) {
         HomogeneousMedium m(desc.medium, geometry.bounds_min(), geometry.bounds_max());
         if (m.active()) {
@@ -49,6 +52,13 @@ RenderContext::RenderContext(const SceneDesc& desc)
             }
         }
     }
+}
+
+const std::vector<float>& RenderContext::gather_radii() const {
+    std::call_once(radii_once_, [this] {
+        if (automatic_radius_) gather_radii_ = edge_aware_radii(geometry, camera, width, height, initial_radius);
+    });
+    return gather_radii_;
 }
 
 float choose_initial_radius(const SceneDesc& desc, const SceneGeometry& geometry, const PinholeCamera& camera) {

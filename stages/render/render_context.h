@@ -2,6 +2,7 @@
 // Everything a convergence reads and never changes: the scene, its BVH, lights, camera,
 // time axis and the settings that shape the estimate.
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <array>
 #include <vector>
@@ -31,6 +32,11 @@ struct RenderContext {
     PinholeCamera camera;
     Timeline timeline;           // timeline_of(scene): Δ, edges, buckets, the pulse's buckets
     float initial_radius = 0;    // meters
+    // Per pixel (the image's, row-major): the automatic radius capped at the distance to the
+    // nearest edge of the surface the pixel sees (edge_radius.h); empty when the scene sets its
+    // radius (every pixel starts at initial_radius). Made at the first call (a ray a pixel:
+    // `info` and the memory plan's pilot never need it), by any thread.
+    const std::vector<float>& gather_radii() const;
     // The medium, only when there is something to compute (present, some extinction, a box
     // of some volume): without it every stage runs its vacuum code and allocates nothing.
     std::optional<HomogeneousMedium> medium;
@@ -65,6 +71,11 @@ struct RenderContext {
     RankExchange* exchange = nullptr;
     size_t pixels() const { return static_cast<size_t>(width) * height; }
     bool has_ambient() const { return !is_black(render.ambient); }
+
+private:
+    bool automatic_radius_ = true;
+    mutable std::once_flag radii_once_;
+    mutable std::vector<float> gather_radii_;
 };
 
 // The initial gather radius: the scene's own, or about three pixel footprints at the middle of

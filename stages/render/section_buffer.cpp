@@ -3,6 +3,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <stdexcept>
 
 namespace sl {
 
@@ -28,6 +29,16 @@ SectionBuffer::SectionBuffer(size_t pixels, const SectionLayout& l, float initia
 SectionBuffer::SectionBuffer(const PixelShare& s, const SectionLayout& l, float initial_radius, bool with_ambient)
     : SectionBuffer(s.count(), l, initial_radius, with_ambient) {
     share = s;
+}
+
+void SectionBuffer::set_initial_radii(const std::vector<float>& image_radii) {
+    if (image_radii.size() != share.total) throw std::logic_error("SectionBuffer: radii of another image");
+    for (size_t i = 0; i < radius2.size(); ++i) {
+        const double r = image_radii[share.global(i)];
+        radius2[i] = r * r;
+    }
+    // The whole image's largest, not this rank's: every rank's photon grid is the same.
+    max_radius = *std::max_element(image_radii.begin(), image_radii.end());
 }
 
 uint64_t SectionBuffer::bytes_needed(size_t pixels, int slots, bool with_ambient) {

@@ -17,6 +17,10 @@ struct SectionBuffer {
     // Only the pixels `share` gives this rank (several ranks render one image).
     SectionBuffer(const PixelShare& share, const SectionLayout& layout, float initial_radius, bool ambient);
 
+    // Each pixel's own initial radius, from radii of the whole image (row-major); before the
+    // first pass only.
+    void set_initial_radii(const std::vector<float>& image_radii);
+
     // Bytes this buffer will hold, computed before anything is allocated.
     static uint64_t bytes_needed(size_t pixels, int slots, bool ambient);
 

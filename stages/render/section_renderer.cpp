@@ -38,6 +38,15 @@ void RenderCounts::add(const RenderCounts& o) {
     beam_hits += o.beam_hits;
 }
 
+std::unique_ptr<SectionBuffer> new_section_buffer(const RenderContext& ctx, const SectionLayout& layout) {
+    const RankExchange* ex = ctx.exchange;
+    auto b = ex ? std::make_unique<SectionBuffer>(PixelShare{ex->rank(), ex->ranks(), ctx.pixels()}, layout,
+                                                  ctx.initial_radius, ctx.has_ambient())
+                : std::make_unique<SectionBuffer>(ctx.pixels(), layout, ctx.initial_radius, ctx.has_ambient());
+    if (!ctx.gather_radii().empty()) b->set_initial_radii(ctx.gather_radii());
+    return b;
+}
+
 SectionRun render_section(const RenderContext& ctx, const SectionLayout& layout, int passes,
                           int64_t photons_per_pass, const PassCallback& on_pass, const std::function<bool()>& cancelled,
                           std::unique_ptr<SectionBuffer> resume_from, const std::atomic<bool>* abandon) {
@@ -45,10 +54,7 @@ SectionRun render_section(const RenderContext& ctx, const SectionLayout& layout,
     SectionRun run;
     SectionCounters counters;
     RankExchange* ex = ctx.exchange;
-    run.buffer = resume_from ? std::move(resume_from)
-                 : ex        ? std::make_unique<SectionBuffer>(PixelShare{ex->rank(), ex->ranks(), ctx.pixels()}, layout,
-                                                               ctx.initial_radius, ctx.has_ambient())
-                             : std::make_unique<SectionBuffer>(ctx.pixels(), layout, ctx.initial_radius, ctx.has_ambient());
+    run.buffer = resume_from ? std::move(resume_from) : new_section_buffer(ctx, layout);
     SectionBuffer& buffer = *run.buffer;
     PhotonMap photons;
     // Volume photons exist only with a medium: a vacuum scene allocates none of it.

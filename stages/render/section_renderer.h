@@ -57,6 +57,10 @@ struct SectionRun {
 // the result equals a render that never stopped). Null: a fresh buffer is made here.
 // `abandon`, set during a pass, drops that pass while its photons are traced (within a batch):
 // the buffer keeps the passes before it. Once the camera pass has begun, the pass finishes.
+// A fresh buffer for this process's pixels (this rank's, with several), every pixel at its
+// initial radius (ctx.gather_radii(), else ctx.initial_radius).
+std::unique_ptr<SectionBuffer> new_section_buffer(const RenderContext& ctx, const SectionLayout& layout);
+
 SectionRun render_section(const RenderContext& ctx, const SectionLayout& layout, int passes,
                           int64_t photons_per_pass, const PassCallback& on_pass = {}, const std::function<bool()>& cancelled = {},
                           std::unique_ptr<SectionBuffer> resume_from = nullptr,

@@ -1,0 +1,127 @@
+// Gather radii that stop short of a surface's edges (edge_radius.h). A grey plate floats in
+// nothing, lit straight down by a laser beam wider than it (every arrival is a stored photon:
+// the plate's light comes through the gather alone), so its radiance is rho E / pi everywhere
+// on it, E = P / (pi a^2) from the beam's flux and cross-section. A gather disc that reaches past
+// the plate's edge finds nothing there: with one radius of three pixel footprints for every pixel,
+// the plate's outermost pixels come out about a third too dark.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "render_helpers.h"
+#include "scenes_for_tests.h"
+#include "stages/render/edge_radius.h"
+
+namespace sl {
+namespace {
+
+constexpr int kRes = 40;           // the camera sees +-0.4 m: 2 cm a pixel
+constexpr float kHalf = 0.2f;      // the plate: 0.4 m square, pixels 10..29 each way
+constexpr float kBeam = 0.5f, kPower = 1, kRho = 0.5f;
+constexpr double kPi = 3.14159265358979;
+
+SceneDesc plate_in_a_beam() {
+    SceneDesc s;
+    s.source = "<test plate in a beam>";
+    s.camera.position = {0, 3, 0};
+    s.camera.look_at = {0, 0, 0};
+    s.camera.up = {0, 0, -1};
+    s.camera.vfov_deg = 2 * std::atan(0.4f / 3.0f) * 180 / 3.14159265f;
+    s.camera.width = s.camera.height = kRes;
+    MaterialDesc grey;
+    grey.name = "grey";
+    grey.albedo = Vec3(kRho);
+    s.materials.push_back(grey);
+    MaterialDesc black;
+    black.name = "black";
+    black.albedo = Vec3(0);
+    s.materials.push_back(black);
+    s.shapes.push_back(test::quad({-kHalf, 0, kHalf}, {2 * kHalf, 0, 0}, {0, 0, -2 * kHalf}));
+    s.shapes.push_back(test::quad({-2, -1, 2}, {4, 0, 0}, {0, 0, -4}, 1));  // the floor, far below the plate
+    LightDesc l;
+    l.type = LightType::Laser;
+    l.position = {0, 1, 0};
+    l.direction = {0, -1, 0};
+    l.radius = kBeam;
+    l.power = Vec3(kPower);
+    s.lights.push_back(l);
+    s.time = {0, 100, 2, 24};
+    s.render.passes = 16;
+    s.render.photons_per_pass = 100000;
+    s.render.max_depth = 1;
+    return s;
+}
+
+// Mean of the first channel over the pixels (x, y) with x in [x0, x1), y in [y0, y1).
+double box(const test::Rendered& r, int x0, int x1, int y0, int y1) {
+    double sum = 0;
+    int n = 0;
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x, ++n) sum += r.steady[(static_cast<size_t>(y) * kRes + x) * 3];
+    return sum / n;
+}
+
+// The plate's outermost ring of pixels but its corners, and its middle.
+struct PlateBands {
+    double edge, middle;
+};
+PlateBands bands(const test::Rendered& r) {
+    const double edge = (box(r, 10, 11, 12, 28) + box(r, 29, 30, 12, 28) + box(r, 12, 28, 10, 11) + box(r, 12, 28, 29, 30)) / 4;
+    return {edge, box(r, 15, 25, 15, 25)};
+}
+
+const double kWant = kRho / kPi * kPower / (kPi * kBeam * kBeam);
+
+TEST(EdgeRadius, ThePlatesOutermostPixelsAreAsBrightAsItsMiddle) {
+    const PlateBands b = bands(test::render_all(plate_in_a_beam()));
+    std::printf("analytic %.4f; middle %.4f (%.4fx), outermost pixels %.4f (%.4fx)\n", kWant, b.middle,
+                b.middle / kWant, b.edge, b.edge / kWant);
+    EXPECT_NEAR(b.middle, kWant, 0.03 * kWant);
+    // The pixel's own jitter still reaches past the edge: a point 0.2 px in has a half-pixel
+    // disc. About 5 % of the light is lost on that ring of pixels, and no more.
+    EXPECT_NEAR(b.edge, kWant, 0.08 * kWant);
+}
+
+TEST(EdgeRadius, OneRadiusForEveryPixelLeavesTheEdgesDark) {
+    // The same scene at the automatic radius given as the scene's own: every pixel starts at it.
+    SceneDesc s = plate_in_a_beam();
+    s.render.radius = RenderContext(s).initial_radius;
+    const PlateBands b = bands(test::render_all(s));
+    std::printf("radius %.4f m for all: middle %.4fx, outermost pixels %.4fx\n", s.render.radius, b.middle / kWant,
+                b.edge / kWant);
+    EXPECT_NEAR(b.middle, kWant, 0.03 * kWant);
+    EXPECT_LT(b.edge, 0.8 * kWant);
+}
+
+TEST(EdgeRadius, RadiiShrinkTowardAnEdgeAndNotTowardAWallOrAnOccluder) {
+    // The plate, and a wall rising from its far half (x > 0.1): the plate's near part meets the
+    // wall in a concave corner (the gather's blockers cut the disc there), not an edge.
+    SceneDesc s = plate_in_a_beam();
+    s.shapes.push_back(test::quad({0.1f, 0, kHalf}, {0, 0, -2 * kHalf}, {0, 0.3f, 0}));
+    const RenderContext ctx(s);
+    const float r0 = ctx.initial_radius, step = 0.02f;  // the plate's pixel, in metres
+    ASSERT_EQ(ctx.gather_radii().size(), static_cast<size_t>(kRes * kRes));
+    auto radius = [&](int x, int y) { return ctx.gather_radii()[static_cast<size_t>(y) * kRes + x]; };
+    EXPECT_GT(r0, 3 * step);  // three pixel footprints at the scene's middle, under the plate
+    // Which way image x runs on the plate: the wall stands at x = 0.1, 5 pixels from the middle.
+    const Vec3 d = ctx.camera.direction(35.5f, 20.5f);
+    const bool x_runs_along = d.x > 0;
+    const int free_side = x_runs_along ? 10 : 29;
+    const int inward = x_runs_along ? 1 : -1;
+    // The free edge: 1, 2 pixels in, at most (k - 0.5) steps (a little over: the plane's
+    // distances are measured from the pixels' centres); 4 in, r0 itself.
+    EXPECT_LE(radius(free_side, 20), 0.55f * step);
+    EXPECT_LE(radius(free_side + inward, 20), 1.55f * step);
+    EXPECT_FLOAT_EQ(radius(free_side + 4 * inward, 20), r0);
+    // The plate's far corner toward the wall: the wall is no edge. Its own top edge is seen
+    // edge-on from above: the pixels next to it on the plate keep r0 (the wall's hits rise).
+    const int by_wall = x_runs_along ? 24 : 15;  // the plate's last pixel before x = 0.1
+    EXPECT_FLOAT_EQ(radius(by_wall, 20), r0);
+    // The floor round the plate: the plate stands over it, nearer the eye, so it is no edge.
+    EXPECT_FLOAT_EQ(radius(free_side - inward, 20), r0);
+}
+
+}  // namespace
+}  // namespace sl
