@@ -29,11 +29,26 @@ public:
         uint32_t rot = static_cast<uint32_t>(old >> 59u);
         return (xorshifted >> rot) | (xorshifted << ((32 - rot) & 31));
     }
-    // Uniform in [0, 1): 24 random bits, so the result is never rounded up to 1.
-    float uniform() { return static_cast<float>(next_u32() >> 8) * 0x1p-24f; }
+    // Uniform in [0, 1): 24 random bits, so the result is never rounded up to 1. The numbers
+    // given to use_first come first, in order.
+    float uniform() {
+        if (first_left_ > 0) {
+            --first_left_;
+            return *first_++;
+        }
+        return static_cast<float>(next_u32() >> 8) * 0x1p-24f;
+    }
+    // The next n numbers uniform() returns are u[0..n) (kept by the caller), then its own again:
+    // a photon path's first numbers from a low-discrepancy point (photon_qmc.h).
+    void use_first(const float* u, int n) {
+        first_ = u;
+        first_left_ = n;
+    }
 
 private:
     uint64_t state_, inc_;
+    const float* first_ = nullptr;
+    int first_left_ = 0;
 };
 
 }  // namespace sl

@@ -8,6 +8,7 @@
 #include <cstring>
 
 #include "core/glossy_path.h"
+#include "core/photon_qmc.h"
 #include "core/rng.h"
 #include "core/specular_path.h"
 #include "core/surface_material.h"
@@ -183,6 +184,7 @@ bool PhotonMap::trace(const RenderContext& ctx, const SectionLayout& layout, int
     traced_bounds_.assign(1, 0);
     for (int r = 0; ex && r < ex->ranks(); ++r) traced_bounds_.push_back(share_begin(nbatches, r + 1, ex->ranks()));
     const auto t0 = std::chrono::steady_clock::now();
+    const PhotonQmc qmc(ctx.render.seed, static_cast<uint64_t>(pass));
     tbb::parallel_for(own_first, own_end, [&](size_t b) {
         Batch& batch = batches_[b];
         batch.records.clear();
@@ -198,7 +200,14 @@ bool PhotonMap::trace(const RenderContext& ctx, const SectionLayout& layout, int
         Rng rng(ctx.render.seed, 2, static_cast<uint64_t>(pass), b);
         PhotonPath path{ctx, layout, batch.records, medium, volume ? &batch.volume : nullptr};
         int64_t n = std::min<int64_t>(kBatch, count - static_cast<int64_t>(b) * kBatch);
-        for (int64_t i = 0; i < n; ++i) path.trace(rng);
+        float first[PhotonQmc::kDims];
+        for (int64_t i = 0; i < n; ++i) {
+            if (ctx.photon_qmc) {
+                qmc.point(static_cast<uint64_t>(b) * kBatch + static_cast<uint64_t>(i), first);
+                rng.use_first(first, PhotonQmc::kDims);
+            }
+            path.trace(rng);
+        }
         if (traced_inv_cell_ > 0) {  // the batch's records are still in this core's cache
             batch.hash.resize(batch.records.size());
             for (size_t i = 0; i < batch.records.size(); ++i) batch.hash[i] = hash_at(batch.records[i], traced_inv_cell_);
