@@ -201,9 +201,10 @@ bool PhotonMap::trace(const RenderContext& ctx, const SectionLayout& layout, int
         PhotonPath path{ctx, layout, batch.records, medium, volume ? &batch.volume : nullptr};
         int64_t n = std::min<int64_t>(kBatch, count - static_cast<int64_t>(b) * kBatch);
         float first[PhotonQmc::kDims];
+        PhotonQmc::Walk walk(qmc, static_cast<uint64_t>(b) * kBatch);
         for (int64_t i = 0; i < n; ++i) {
             if (ctx.photon_qmc) {
-                qmc.point(static_cast<uint64_t>(b) * kBatch + static_cast<uint64_t>(i), first);
+                walk.next(first);
                 rng.use_first(first, PhotonQmc::kDims);
             }
             path.trace(rng);

@@ -63,8 +63,8 @@ struct RenderContext {
     // core/glossy_path.h) gathers its diffuse base and has its coat followed in one leg.
     // false: it gathers all of it; kept for tests that compare.
     bool follow_coats = true;
-    // true (the program): every photon path's first numbers come from a randomised Halton
-    // sequence (photon_qmc.h). false: all from its random stream; kept for tests that compare.
+    // true (the program): every photon path's first numbers come from a randomised
+    // low-discrepancy sequence (photon_qmc.h). false: all from its random stream; kept for tests that compare.
     bool photon_qmc = true;
     // Image positions (pixel units) of the point and spot lights inside the medium in front of
     // the camera: the pixels round them sample their rays towards them (camera_pass.cpp).

@@ -40,6 +40,20 @@ TEST(PhotonQmc, EachDimensionIsStratifiedOverAPassAndEveryPointIsInTheUnitCube) 
     EXPECT_FLOAT_EQ(PhotonQmc::radical_inverse(5, 3), 7.0f / 9);  // 12 -> 0.21
 }
 
+TEST(PhotonQmc, AWalkGivesEachIndexsPoint) {
+    // The batches' incremental digits against the direct radical inverse, across carries in
+    // every base (from an index whose low digits are all at their largest in base 2 and 3).
+    const PhotonQmc qmc(3, 9);
+    const uint64_t first = (uint64_t(1) << 20) - 5;
+    PhotonQmc::Walk walk(qmc, first);
+    for (uint64_t i = first; i < first + 5000; ++i) {
+        float a[PhotonQmc::kDims], b[PhotonQmc::kDims];
+        walk.next(a);
+        qmc.point(i, b);
+        for (int j = 0; j < PhotonQmc::kDims; ++j) ASSERT_NEAR(a[j], b[j], 1e-6f) << "index " << i << " dimension " << j;
+    }
+}
+
 TEST(PhotonQmc, ShiftsAreUniformOverPasses) {
     // Every photon's point is uniform because the pass's shift is: the mean of point 5's first
     // dimension over 4000 passes is 1/2 within 4 standard errors.
