@@ -121,10 +121,10 @@ std::vector<float> edge_aware_radii(const SceneGeometry& geometry, const Pinhole
             // before it, which the same test finds on p's surface).
             int first = 1;
             while (!any_marked(x - first, y - first, x + first, y + first)) ++first;
-            // A pixel beside an edge either way may see the other surface with part of its area
-            // (a silhouette's pixels are partly floor, partly the object): those visible points
-            // lie within a pixel of that surface's edge, so the pixel's radius is half a step.
-            float best = mark[static_cast<size_t>(y) * width + x] ? std::min(r0, 0.5f * step) : r0;
+            // (A silhouette's pixel that sees the floor behind at its centre keeps the floor's
+            // radius for its points on the object too: halving it as well cut that pixel's bias
+            // little and cost 14 % more per-pixel noise in a Cornell box's pulse.)
+            float best = r0;
             // Ring by ring outward; a ring k pixels out lies at least about (k - 1/2) steps away.
             for (int k = first; k <= reach && 0.9f * (k - 0.5f) * step < best; ++k) {
                 for (int dy = -k; dy <= k; ++dy) {
