@@ -1,5 +1,6 @@
 #pragma once
 // Scenes built in code for the renderer's tests, where every number is known.
+#include <cmath>
 #include <cstdint>
 
 #include "config/scene_desc.h"
@@ -15,6 +16,34 @@ inline ShapeDesc quad(Vec3 corner, Vec3 e1, Vec3 e2, int material = 0) {
     q.edge2 = e2;
     q.material = material;
     return q;
+}
+
+// A camera 3 m over the origin looking straight down (image up is -z), seeing +-half_view m
+// across res x res pixels, and one grey Lambertian material (index 0) of albedo rho.
+inline SceneDesc looking_down_at_grey(const char* source, int res, float half_view, float rho) {
+    SceneDesc s;
+    s.source = source;
+    s.camera.position = {0, 3, 0};
+    s.camera.look_at = {0, 0, 0};
+    s.camera.up = {0, 0, -1};
+    s.camera.vfov_deg = 2 * std::atan(half_view / 3.0f) * 180 / 3.14159265f;
+    s.camera.width = s.camera.height = res;
+    MaterialDesc grey;
+    grey.name = "grey";
+    grey.albedo = Vec3(rho);
+    s.materials.push_back(grey);
+    return s;
+}
+
+// A laser beam of radius `radius` (its flux spread evenly over the disc) from p along unit d.
+inline LightDesc laser(Vec3 p, Vec3 d, float radius, float power) {
+    LightDesc l;
+    l.type = LightType::Laser;
+    l.position = p;
+    l.direction = d;
+    l.radius = radius;
+    l.power = Vec3(power);
+    return l;
 }
 
 // A diffuse plane y = 0 of half-size `half` (albedo rho), a point light of power P at height h

@@ -23,30 +23,14 @@ constexpr float kBeam = 0.5f, kPower = 1, kRho = 0.5f;
 constexpr double kPi = 3.14159265358979;
 
 SceneDesc plate_in_a_beam() {
-    SceneDesc s;
-    s.source = "<test plate in a beam>";
-    s.camera.position = {0, 3, 0};
-    s.camera.look_at = {0, 0, 0};
-    s.camera.up = {0, 0, -1};
-    s.camera.vfov_deg = 2 * std::atan(0.4f / 3.0f) * 180 / 3.14159265f;
-    s.camera.width = s.camera.height = kRes;
-    MaterialDesc grey;
-    grey.name = "grey";
-    grey.albedo = Vec3(kRho);
-    s.materials.push_back(grey);
+    SceneDesc s = test::looking_down_at_grey("<test plate in a beam>", kRes, 0.4f, kRho);
     MaterialDesc black;
     black.name = "black";
     black.albedo = Vec3(0);
     s.materials.push_back(black);
     s.shapes.push_back(test::quad({-kHalf, 0, kHalf}, {2 * kHalf, 0, 0}, {0, 0, -2 * kHalf}));
     s.shapes.push_back(test::quad({-2, -1, 2}, {4, 0, 0}, {0, 0, -4}, 1));  // the floor, far below the plate
-    LightDesc l;
-    l.type = LightType::Laser;
-    l.position = {0, 1, 0};
-    l.direction = {0, -1, 0};
-    l.radius = kBeam;
-    l.power = Vec3(kPower);
-    s.lights.push_back(l);
+    s.lights.push_back(test::laser({0, 1, 0}, {0, -1, 0}, kBeam, kPower));
     s.time = {0, 100, 2, 24};
     s.render.passes = 16;
     s.render.photons_per_pass = 100000;
@@ -79,9 +63,12 @@ TEST(EdgeRadius, ThePlatesOutermostPixelsAreAsBrightAsItsMiddle) {
     std::printf("analytic %.4f; middle %.4f (%.4fx), outermost pixels %.4f (%.4fx)\n", kWant, b.middle,
                 b.middle / kWant, b.edge, b.edge / kWant);
     EXPECT_NEAR(b.middle, kWant, 0.03 * kWant);
-    // The pixel's own jitter still reaches past the edge: a point 0.2 px in has a half-pixel
-    // disc. About 5 % of the light is lost on that ring of pixels, and no more.
-    EXPECT_NEAR(b.edge, kWant, 0.08 * kWant);
+    // The pixel's own points still reach past the edge: the outermost pixel starts at half a
+    // pixel, and a point u pixels from the edge (u uniform in the pixel) loses the disc's
+    // segment beyond it, on average (1/2) (2/3) / pi = 10.6 % in the first pass, less as the
+    // radii shrink. Measured: 0.92-0.94 (one radius for all: 0.64, the next test).
+    EXPECT_GT(b.edge, 0.87 * kWant);
+    EXPECT_LT(b.edge, 1.02 * kWant);
 }
 
 TEST(EdgeRadius, OneRadiusForEveryPixelLeavesTheEdgesDark) {

@@ -21,26 +21,11 @@ constexpr int kRes = 40;          // the camera sees +-0.4 m of floor: 2 cm a pi
 constexpr float kBeam = 0.3f, kPower = 1, kRho = 0.5f, kRadius = 0.08f;
 
 SceneDesc sheet_on_floor() {
-    SceneDesc s;
-    s.source = "<test sheet wall>";
-    s.camera.position = {0, 3, 0};
-    s.camera.look_at = {0, 0, 0};
-    s.camera.up = {0, 0, -1};
-    s.camera.vfov_deg = 2 * std::atan(0.4f / 3.0f) * 180 / 3.14159265f;
-    s.camera.width = s.camera.height = kRes;
-    MaterialDesc grey;
-    grey.name = "grey";
-    grey.albedo = Vec3(kRho);
-    s.materials.push_back(grey);
+    SceneDesc s = test::looking_down_at_grey("<test sheet wall>", kRes, 0.4f, kRho);
     s.shapes.push_back(test::quad({-1, 0, 1}, {2, 0, 0}, {0, 0, -2}));  // the floor
     s.shapes.push_back(test::quad({0, 0, -1}, {0, 0, 2}, {0, 1, 0}));   // the sheet x = 0, 1 m tall
-    LightDesc l;
-    l.type = LightType::Laser;
-    l.position = {1, 1, 0};
-    l.direction = Vec3(-1, -1, 0) * (1 / std::sqrt(2.0f));  // its axis meets the foot at the origin
-    l.radius = kBeam;
-    l.power = Vec3(kPower);
-    s.lights.push_back(l);
+    // Its axis meets the foot at the origin.
+    s.lights.push_back(test::laser({1, 1, 0}, Vec3(-1, -1, 0) * (1 / std::sqrt(2.0f)), kBeam, kPower));
     s.time = {0, 100, 2, 24};
     s.render.passes = 8;
     s.render.photons_per_pass = 60000;
