@@ -123,4 +123,20 @@ inline BsdfDraw stratified_draw(int k, int n, BsdfDraw offset) {
     return {std::min(uc, below1), std::min(u1, below1), std::min(u2, below1)};
 }
 
+// The same n draws for a branch's next glossy vertex: the set again, its branches shuffled by
+// k -> (a k + c) mod n (a odd, n a power of two: a bijection; else k + c) and shifted by an
+// offset of their own. Each branch's two draws are then independent and uniform (the second
+// offset is), while over the n branches the second vertex's lobe choice and direction are
+// stratified as well: of 32 branches through a glass cube, those that reflect at its far face
+// are no longer a Poisson count.
+struct BranchShuffle {
+    uint32_t a = 1, c = 0;
+};
+inline BsdfDraw shuffled_draw(int k, int n, BranchShuffle s, BsdfDraw offset) {
+    const uint32_t un = static_cast<uint32_t>(n), uk = static_cast<uint32_t>(k);
+    const bool power_of_two = (un & (un - 1)) == 0;
+    const uint32_t j = power_of_two ? (s.a * uk + s.c) & (un - 1) : (uk + s.c) % un;
+    return stratified_draw(static_cast<int>(j), n, offset);
+}
+
 }  // namespace sl

@@ -19,23 +19,20 @@ public:
 
     PhotonQmc(uint64_t seed, uint64_t pass) {
         Rng rng(seed, 3, pass);
-        for (float& s : shift_) s = rng.uniform();
+        for (uint32_t& s : shift_) s = rng.next_u32();
     }
 
     static constexpr uint32_t kPrime[kDims] = {2, 3, 5, 7, 11, 13, 17, 19};
 
     // The point of photon `index` of the pass: kDims numbers in [0, 1).
     void point(uint64_t index, float* u) const {
-        for (int j = 0; j < kDims; ++j) u[j] = shifted(radical_inverse(index, kPrime[j]), j);
+        for (int j = 0; j < kDims; ++j) u[j] = shifted(radical_inverse_fixed(index, kPrime[j]), j);
     }
 
-    // v in [0, 1) moved by dimension j's shift, modulo 1, kept below 1 against rounding.
-    float shifted(float v, int j) const {
-        constexpr float kBelow1 = 0x1.fffffep-1f;
-        v += shift_[j];
-        if (v >= 1.0f) v -= 1.0f;
-        return std::min(std::max(v, 0.0f), kBelow1);
-    }
+    // A fixed-point value (units of 2^-32) moved by dimension j's shift: the sum wraps modulo
+    // 2^32, which is the shift modulo 1 without a branch (a branch here was mispredicted half
+    // the time), then its top 24 bits as a float below 1.
+    float shifted(uint32_t v, int j) const { return static_cast<float>((v + shift_[j]) >> 8) * 0x1p-24f; }
 
     // The points of consecutive indices from `first` on, one at a time: each dimension keeps its
     // digits and adds one to them (amortised a digit a point), which costs a few operations
@@ -46,20 +43,19 @@ public:
         Walk(const PhotonQmc& q, uint64_t first) : q_(q) {
             for (int j = 0; j < kDims; ++j) {
                 const uint32_t b = kPrime[j];
-                double scale = 1.0 / b;
                 value_[j] = 0;
                 uint64_t i = first;
-                for (int k = 0; k < kDigits; ++k, scale /= b, i /= b) {
+                for (int k = 0; k < kDigits; ++k, i /= b) {
                     digit_[j][k] = static_cast<uint8_t>(i % b);
-                    scale_[j][k] = scale;
-                    value_[j] += digit_[j][k] * scale;
+                    scale_[j][k] = digit_scale(b, k);
+                    value_[j] += digit_[j][k] * scale_[j][k];
                 }
             }
         }
         // The current index's point, then on to the next index.
         void next(float* u) {
             for (int j = 0; j < kDims; ++j) {
-                u[j] = q_.shifted(static_cast<float>(value_[j]), j);
+                u[j] = q_.shifted(value_[j], j);
                 const uint8_t last = static_cast<uint8_t>(kPrime[j] - 1);
                 for (int k = 0; k < kDigits; ++k) {
                     if (digit_[j][k] < last) {
@@ -76,21 +72,32 @@ public:
     private:
         static constexpr int kDigits = 40;  // 2^40 indices in base 2, more in the others
         const PhotonQmc& q_;
-        double value_[kDims];
-        double scale_[kDims][kDigits];
+        uint32_t value_[kDims];
+        uint32_t scale_[kDims][kDigits];
         uint8_t digit_[kDims][kDigits];
     };
 
-    // index's digits in base b mirrored about the point: 0.d1 d2 d3... (double: indices up to 2^53).
+    // Digit k's weight in base b, b^-(k+1), in units of 2^-32 rounded down (0 once below them):
+    // a radical inverse is the sum of its digits' weights, exact in integers, so a walk's
+    // additions and subtractions give exactly the point's value.
+    static uint32_t digit_scale(uint32_t b, int k) {
+        uint64_t p = b;
+        for (int i = 0; i < k && p <= (uint64_t(1) << 32); ++i) p *= b;
+        return p > (uint64_t(1) << 32) ? 0u : static_cast<uint32_t>((uint64_t(1) << 32) / p);
+    }
+
+    // index's digits in base b mirrored about the point: 0.d1 d2 d3..., in units of 2^-32.
+    static uint32_t radical_inverse_fixed(uint64_t index, uint32_t base) {
+        uint32_t r = 0;
+        for (int k = 0; index > 0; index /= base, ++k) r += static_cast<uint32_t>(index % base) * digit_scale(base, k);
+        return r;
+    }
     static float radical_inverse(uint64_t index, uint32_t base) {
-        const double inv = 1.0 / base;
-        double f = inv, r = 0;
-        for (; index > 0; index /= base, f *= inv) r += static_cast<double>(index % base) * f;
-        return static_cast<float>(r);
+        return static_cast<float>(radical_inverse_fixed(index, base) >> 8) * 0x1p-24f;
     }
 
 private:
-    float shift_[kDims];
+    uint32_t shift_[kDims];
 };
 
 }  // namespace sl

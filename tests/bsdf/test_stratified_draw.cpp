@@ -107,5 +107,75 @@ TEST(StratifiedDraw, TheSplitsLobeChoiceIsStratifiedAndItsMeanKeptWithASmallerSp
                 std::sqrt(var_s), std::sqrt(var_i));
 }
 
+// A branch's draw at its next glossy vertex (shuffled_draw): uniform on its own and unrelated
+// to the branch's first draw, while over the n branches each coordinate is stratified.
+TEST(StratifiedDraw, ABranchsSecondDrawIsUniformIndependentOfItsFirstAndStratifiedOverTheBranches) {
+    std::mt19937 gen(5);
+    std::uniform_real_distribution<float> u01(0, 1);
+    const int n = 32, trials = 20000;
+    std::vector<int> bins(24, 0);
+    double s1 = 0, s2 = 0, s12 = 0, q1 = 0, q2 = 0;  // the first and second uc of branch 7
+    for (int t = 0; t < trials; ++t) {
+        const BsdfDraw first{u01(gen), u01(gen), u01(gen)}, second{u01(gen), u01(gen), u01(gen)};
+        const BranchShuffle shuffle{static_cast<uint32_t>(gen()) | 1u, static_cast<uint32_t>(gen())};
+        const BsdfDraw a = stratified_draw(7, n, first), b = shuffled_draw(7, n, shuffle, second);
+        ASSERT_TRUE(b.uc >= 0 && b.uc < 1 && b.u1 >= 0 && b.u1 < 1 && b.u2 >= 0 && b.u2 < 1);
+        ++bins[static_cast<int>(b.uc * 8)];
+        ++bins[8 + static_cast<int>(b.u1 * 8)];
+        ++bins[16 + static_cast<int>(b.u2 * 8)];
+        s1 += a.uc, s2 += b.uc, s12 += a.uc * b.uc, q1 += a.uc * a.uc, q2 += b.uc * b.uc;
+        if (t < 200) {  // over the branches: one second draw in each n-th of [0, 1) in uc
+            std::vector<int> strata(n, 0);
+            for (int k = 0; k < n; ++k) {
+                const float uc = shuffled_draw(k, n, shuffle, {0, second.u1, second.u2}).uc;
+                ++strata[std::min(n - 1, static_cast<int>(uc * n + 1e-4f))];
+            }
+            for (int c : strata) ASSERT_EQ(c, 1);
+        }
+    }
+    for (int c : bins) EXPECT_NEAR(c, trials / 8.0, 5 * std::sqrt(trials / 8.0));
+    const double m1 = s1 / trials, m2 = s2 / trials;
+    const double corr = (s12 / trials - m1 * m2) / std::sqrt((q1 / trials - m1 * m1) * (q2 / trials - m2 * m2));
+    EXPECT_LT(std::abs(corr), 4 / std::sqrt(static_cast<double>(trials)));
+}
+
+// Through a slab of the rough glass (top face, then bottom face from inside, the cube's path
+// from the camera to the floor beneath): the n branches' mean throughput out of the bottom with
+// second draws from shuffled_draw against independent ones. The same mean, a smaller spread:
+// the branches that reflect at the bottom are stratified too.
+TEST(StratifiedDraw, SecondDrawsThroughASlabKeepTheMeanWithASmallerSpread) {
+    const bsdf::Bsdf b = rough_glass();
+    const int n = 32, trials = 4000;
+    std::mt19937 gen(17);
+    std::uniform_real_distribution<float> u01(0, 1);
+    double sum[2] = {0, 0}, sq[2] = {0, 0};
+    for (int t = 0; t < trials; ++t) {
+        const BsdfDraw first{u01(gen), u01(gen), u01(gen)}, second{u01(gen), u01(gen), u01(gen)};
+        const BranchShuffle shuffle{static_cast<uint32_t>(gen()) | 1u, static_cast<uint32_t>(gen())};
+        double mean[2] = {0, 0};
+        for (int k = 0; k < n; ++k) {
+            const BsdfDraw u = stratified_draw(k, n, first);
+            const bsdf::Sample top = bsdf::sample(b, kWo, u.uc, u.u1, u.u2);
+            const BsdfDraw independent{u01(gen), u01(gen), u01(gen)};
+            if (!top.valid || top.wi.z >= 0) continue;  // reflected at the top: not through
+            // The bottom face's frame (normal -z, tangents x and -y): the path arrives from inside.
+            const Vec3 wo2{-top.wi.x, top.wi.y, top.wi.z};
+            for (int m = 0; m < 2; ++m) {
+                const BsdfDraw v = m == 0 ? shuffled_draw(k, n, shuffle, second) : independent;
+                const bsdf::Sample bottom = bsdf::sample(b, wo2, v.uc, v.u1, v.u2);
+                if (!bottom.valid || bottom.wi.z <= 0) continue;  // back inside: not out of the bottom
+                mean[m] += (top.weight.x * bottom.weight.x) / n;
+            }
+        }
+        for (int m = 0; m < 2; ++m) sum[m] += mean[m], sq[m] += mean[m] * mean[m];
+    }
+    const double mean_s = sum[0] / trials, mean_i = sum[1] / trials;
+    const double var_s = sq[0] / trials - mean_s * mean_s, var_i = sq[1] / trials - mean_i * mean_i;
+    EXPECT_NEAR(mean_s, mean_i, 4 * std::sqrt(var_i / trials));
+    EXPECT_LT(var_s * 1.5, var_i);
+    std::printf("[through a rough glass slab, n = %d] mean %.4f vs %.4f (independent second draws), spread %.4f vs %.4f\n",
+                n, mean_s, mean_i, std::sqrt(var_s), std::sqrt(var_i));
+}
+
 }  // namespace
 }  // namespace sl::test
