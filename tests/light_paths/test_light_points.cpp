@@ -18,7 +18,8 @@ namespace {
 // it. The camera, 0.9 m up under the sheet, sees x and y in [-0.5, 0.5]: the whole penumbra.
 std::vector<float> penumbra(bool stratified, uint64_t seed, int passes) {
     const int res = 16;
-    SceneDesc s = lp::empty_scene({0, 0, 0.9f}, {0, 0, 0}, {0, 1, 0}, 2 * std::atan(0.5f / 0.9f) * 180 / 3.14159265f, res);
+    const float vfov = 2 * std::atan(0.5f / 0.9f) * 180 / 3.14159265f;
+    SceneDesc s = lp::empty_scene({0, 0, 0.9f}, {0, 0, 0}, {0, 1, 0}, vfov, res);
     const int grey = lp::add_material(s, MaterialType::Diffuse, Vec3(0.5f));
     const int black = lp::add_material(s, MaterialType::Diffuse, Vec3(0));
     lp::add_quad(s, {-3, -3, 0}, {6, 0, 0}, {0, 6, 0}, grey);
@@ -30,17 +31,9 @@ std::vector<float> penumbra(bool stratified, uint64_t seed, int passes) {
     l.edge2 = {1, 0, 0};  // edge1 x edge2 = -z: it shines down
     l.radiance = Vec3(10);
     s.lights.push_back(l);
-    s.time = {0, 12, 12, 24};
-    s.emission.mode = EmissionMode::Constant;
-    s.render.max_depth = 1;  // direct light only
-    s.render.passes = passes;
-    s.render.photons_per_pass = 1000;
-    s.render.seed = seed;
-    RenderContext ctx(with_imports(s));
-    ctx.stratified_light_points = stratified;
-    FramesInMemory sink;
-    render_frames(ctx, {}, sink);
-    return sink.steady;
+    // Direct light only (max_depth 1).
+    return lp::steady_image(s, 1, passes, 1000, seed,
+                            [&](RenderContext& ctx) { ctx.stratified_light_points = stratified; });
 }
 
 TEST(LightPoints, ASoftShadowConvergesFasterWithTheSameMean) {
@@ -77,7 +70,8 @@ TEST(LightPoints, ASoftShadowConvergesFasterWithTheSameMean) {
                 "%.4f vs %.4f (%.1fx less)\n",
                 passes, seeds, image_mean[0], image_mean[1], pixel_sd[0], pixel_sd[1], pixel_sd[0] / pixel_sd[1]);
     // The same mean within 4 combined standard errors of the seeds' image means.
-    EXPECT_NEAR(image_mean[1], image_mean[0], 4 * std::sqrt((image_sd[0] * image_sd[0] + image_sd[1] * image_sd[1]) / seeds));
+    const double combined = std::sqrt((image_sd[0] * image_sd[0] + image_sd[1] * image_sd[1]) / seeds);
+    EXPECT_NEAR(image_mean[1], image_mean[0], 4 * combined);
     // Independent samples leave each pixel a binomial share of the lamp (10 % at 64 passes);
     // stratified, the share's error falls nearly as 1/passes (measured: 4.1x less here, 2.3x at 16 passes).
     EXPECT_GT(pixel_sd[0], 3 * pixel_sd[1]);

@@ -76,17 +76,7 @@ std::vector<float> wall(bool qmc, uint64_t seed) {
     lp::add_quad(s, {-3, -3, 0}, {6, 0, 0}, {0, 6, 0}, white);
     lp::add_quad(s, {1, -3, 0}, {0, 6, 0}, {0, 0, 3}, white);
     lp::add_spot(s, {-0.5f, 0, 1.5f}, {0, 0, -1}, 30, 100);
-    s.time = {0, 12, 12, 24};
-    s.emission.mode = EmissionMode::Constant;
-    s.render.max_depth = 2;
-    s.render.passes = 8;
-    s.render.photons_per_pass = 20000;
-    s.render.seed = seed;
-    RenderContext ctx(with_imports(s));
-    ctx.photon_qmc = qmc;
-    FramesInMemory sink;
-    render_frames(ctx, {}, sink);
-    return sink.steady;
+    return lp::steady_image(s, 2, 8, 20000, seed, [&](RenderContext& ctx) { ctx.photon_qmc = qmc; });
 }
 
 TEST(PhotonQmc, TheFloorsBounceOnAWallVariesLessFromSeedToSeedWithTheSameMean) {
