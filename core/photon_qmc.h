@@ -52,6 +52,32 @@ public:
                 }
             }
         }
+        // The points of the next n indices, kDims numbers each, into u[0 .. n kDims): dimension
+        // by dimension, so that each dimension's carries come in their own regular rhythm (base b:
+        // one in b) that the branch predictor learns, instead of mixed with the photon paths'
+        // branches between two points.
+        void fill(float* u, int n) {
+            for (int j = 0; j < kDims; ++j) {
+                const uint8_t last = static_cast<uint8_t>(kPrime[j] - 1);
+                uint32_t value = value_[j];
+                uint8_t* digit = digit_[j];
+                const uint32_t* scale = scale_[j];
+                for (int i = 0; i < n; ++i) {
+                    u[i * kDims + j] = q_.shifted(value, j);
+                    for (int k = 0; k < kDigits; ++k) {
+                        if (digit[k] < last) {
+                            ++digit[k];
+                            value += scale[k];
+                            break;
+                        }
+                        digit[k] = 0;
+                        value -= last * scale[k];
+                    }
+                }
+                value_[j] = value;
+            }
+        }
+
         // The current index's point, then on to the next index.
         void next(float* u) {
             for (int j = 0; j < kDims; ++j) {

@@ -52,6 +52,19 @@ TEST(PhotonQmc, AWalkGivesEachIndexsPoint) {
         qmc.point(i, b);
         for (int j = 0; j < PhotonQmc::kDims; ++j) ASSERT_NEAR(a[j], b[j], 1e-6f) << "index " << i << " dimension " << j;
     }
+    // The photon pass's chunks (fill: dimension by dimension), the same points exactly, chunk
+    // after chunk across the same carries.
+    PhotonQmc::Walk chunks(qmc, first);
+    std::vector<float> u(300 * PhotonQmc::kDims);
+    for (uint64_t start = first; start < first + 3000; start += 300) {
+        chunks.fill(u.data(), 300);
+        for (uint64_t i = start; i < start + 300; ++i) {
+            float b[PhotonQmc::kDims];
+            qmc.point(i, b);
+            for (int j = 0; j < PhotonQmc::kDims; ++j)
+                ASSERT_EQ(u[(i - start) * PhotonQmc::kDims + j], b[j]) << "index " << i << " dimension " << j;
+        }
+    }
 }
 
 TEST(PhotonQmc, ShiftsAreUniformOverPasses) {
