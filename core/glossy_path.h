@@ -113,14 +113,15 @@ inline float radical_inverse(uint32_t k, uint32_t base) {
     for (; k > 0; k /= base, f *= inv) r += static_cast<float>(k % base) * f;
     return r;
 }
+// a + b modulo 1 for a, b in [0, 1), kept below 1 (rounding can land on 1 exactly).
+inline float add_mod1(float a, float b) {
+    const float x = a + b;
+    return std::min(x >= 1.0f ? x - 1.0f : x, 0x1.fffffep-1f);
+}
 inline BsdfDraw stratified_draw(int k, int n, BsdfDraw offset) {
-    const auto wrap = [](float x) { return x >= 1.0f ? x - 1.0f : x; };
     const uint32_t i = static_cast<uint32_t>(k);
-    const float uc = wrap(offset.uc + static_cast<float>(k) / static_cast<float>(n));
-    const float u1 = wrap(offset.u1 + radical_inverse(i, 2)), u2 = wrap(offset.u2 + radical_inverse(i, 3));
-    // Rounding can land on 1 exactly: keep every number below it.
-    const float below1 = 0x1.fffffep-1f;
-    return {std::min(uc, below1), std::min(u1, below1), std::min(u2, below1)};
+    return {add_mod1(offset.uc, static_cast<float>(k) / static_cast<float>(n)),
+            add_mod1(offset.u1, radical_inverse(i, 2)), add_mod1(offset.u2, radical_inverse(i, 3))};
 }
 
 // The same n draws for a branch's next glossy vertex: the set again, its branches shuffled by

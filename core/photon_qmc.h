@@ -34,21 +34,40 @@ public:
     // the time), then its top 24 bits as a float below 1.
     float shifted(uint32_t v, int j) const { return static_cast<float>((v + shift_[j]) >> 8) * 0x1p-24f; }
 
-    // The points of consecutive indices from `first` on, one at a time: each dimension keeps its
-    // digits and adds one to them (amortised a digit a point), which costs a few operations
-    // where point() divides ~8 times per dimension (a tenth of a diffuse scene's time). Every
-    // batch of photons starts its own walk at its first index: threads and ranks agree.
+    static constexpr int kDigits = 40;  // 2^40 indices in base 2, more in the others
+
+    // Digit k's weight in base kPrime[j], b^-(k+1), in units of 2^-32 rounded down (0 once below
+    // them), made once: a radical inverse is the sum of its digits' weights, exact in integers,
+    // so a walk's additions and subtractions give exactly the point's value.
+    using DigitWeights = uint32_t[kDims][kDigits];
+    static const DigitWeights& digit_weights() {
+        static const auto table = [] {
+            struct Table {
+                DigitWeights w;
+            } t{};
+            for (int j = 0; j < kDims; ++j) {
+                uint64_t p = kPrime[j];  // b^(k+1)
+                for (int k = 0; k < kDigits && p <= (uint64_t(1) << 32); ++k, p *= kPrime[j])
+                    t.w[j][k] = static_cast<uint32_t>((uint64_t(1) << 32) / p);
+            }
+            return t;
+        }();
+        return table.w;
+    }
+
+    // The points of consecutive indices from `first` on: each dimension keeps its digits and
+    // adds one to them (amortised a digit a point), which costs a few operations where point()
+    // divides ~8 times per dimension (a tenth of a diffuse scene's time). Every batch of photons
+    // starts its own walk at its first index: threads and ranks agree.
     class Walk {
     public:
-        Walk(const PhotonQmc& q, uint64_t first) : q_(q) {
+        Walk(const PhotonQmc& q, uint64_t first) : q_(q), weight_(digit_weights()) {
             for (int j = 0; j < kDims; ++j) {
-                const uint32_t b = kPrime[j];
                 value_[j] = 0;
                 uint64_t i = first;
-                for (int k = 0; k < kDigits; ++k, i /= b) {
-                    digit_[j][k] = static_cast<uint8_t>(i % b);
-                    scale_[j][k] = digit_scale(b, k);
-                    value_[j] += digit_[j][k] * scale_[j][k];
+                for (int k = 0; k < kDigits; ++k, i /= kPrime[j]) {
+                    digit_[j][k] = static_cast<uint8_t>(i % kPrime[j]);
+                    value_[j] += digit_[j][k] * weight_[j][k];
                 }
             }
         }
@@ -61,61 +80,40 @@ public:
                 const uint8_t last = static_cast<uint8_t>(kPrime[j] - 1);
                 uint32_t value = value_[j];
                 uint8_t* digit = digit_[j];
-                const uint32_t* scale = scale_[j];
+                const uint32_t* weight = weight_[j];
                 for (int i = 0; i < n; ++i) {
                     u[i * kDims + j] = q_.shifted(value, j);
                     for (int k = 0; k < kDigits; ++k) {
                         if (digit[k] < last) {
                             ++digit[k];
-                            value += scale[k];
+                            value += weight[k];
                             break;
                         }
                         digit[k] = 0;
-                        value -= last * scale[k];
+                        value -= last * weight[k];
                     }
                 }
                 value_[j] = value;
             }
         }
-
         // The current index's point, then on to the next index.
-        void next(float* u) {
-            for (int j = 0; j < kDims; ++j) {
-                u[j] = q_.shifted(value_[j], j);
-                const uint8_t last = static_cast<uint8_t>(kPrime[j] - 1);
-                for (int k = 0; k < kDigits; ++k) {
-                    if (digit_[j][k] < last) {
-                        ++digit_[j][k];
-                        value_[j] += scale_[j][k];
-                        break;
-                    }
-                    digit_[j][k] = 0;
-                    value_[j] -= last * scale_[j][k];
-                }
-            }
-        }
+        void next(float* u) { fill(u, 1); }
 
     private:
-        static constexpr int kDigits = 40;  // 2^40 indices in base 2, more in the others
         const PhotonQmc& q_;
+        const DigitWeights& weight_;
         uint32_t value_[kDims];
-        uint32_t scale_[kDims][kDigits];
         uint8_t digit_[kDims][kDigits];
     };
 
-    // Digit k's weight in base b, b^-(k+1), in units of 2^-32 rounded down (0 once below them):
-    // a radical inverse is the sum of its digits' weights, exact in integers, so a walk's
-    // additions and subtractions give exactly the point's value.
-    static uint32_t digit_scale(uint32_t b, int k) {
-        uint64_t p = b;
-        for (int i = 0; i < k && p <= (uint64_t(1) << 32); ++i) p *= b;
-        return p > (uint64_t(1) << 32) ? 0u : static_cast<uint32_t>((uint64_t(1) << 32) / p);
-    }
-
-    // index's digits in base b mirrored about the point: 0.d1 d2 d3..., in units of 2^-32.
+    // index's digits in base b (one of kPrime) mirrored about the point: 0.d1 d2 d3..., in
+    // units of 2^-32.
     static uint32_t radical_inverse_fixed(uint64_t index, uint32_t base) {
+        const int j = static_cast<int>(std::find(kPrime, kPrime + kDims, base) - kPrime);
+        if (j == kDims) return 0;  // not one of the sequence's bases
         uint32_t r = 0;
-        for (int k = 0; index > 0; index /= base, ++k) r += static_cast<uint32_t>(index % base) * digit_scale(base, k);
+        for (int k = 0; index > 0 && k < kDigits; index /= base, ++k)
+            r += static_cast<uint32_t>(index % base) * digit_weights()[j][k];
         return r;
     }
     static float radical_inverse(uint64_t index, uint32_t base) {

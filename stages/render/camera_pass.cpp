@@ -375,9 +375,8 @@ struct PixelTracer {
         Rng offset(ctx.render.seed, 12, light, pixel);
         const float a = offset.uniform(), b = offset.uniform();
         const uint32_t n = static_cast<uint32_t>(pass);
-        const auto wrap = [](float x) { return std::min(x >= 1.0f ? x - 1.0f : x, 0x1.fffffep-1f); };
-        u1 = wrap(a + radical_inverse(n, 2));
-        u2 = wrap(b + radical_inverse(n, 3));
+        u1 = add_mod1(a, radical_inverse(n, 2));
+        u2 = add_mod1(b, radical_inverse(n, 3));
     }
 
     // The piece of o + t d, t in (tnear, tfar), inside the medium: its in-scattering at once
@@ -436,6 +435,7 @@ struct PixelTracer {
         light_points_pixel = -1;  // the path's later vertices draw theirs at random
         for (size_t i = 0; i < ctx.lights.count(); ++i) {
             DirectLightSample s;
+            // Drawn even when replaced: the path's later numbers stay the same either way.
             float u1 = rng.uniform(), u2 = rng.uniform();
             if (stratified_pixel >= 0) light_pass_point(static_cast<size_t>(stratified_pixel), i, u1, u2);
             // A carried section keeps nothing that arrives before it: a light whose every
