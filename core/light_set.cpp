@@ -182,7 +182,7 @@ bool LightSet::sample_direct(size_t i, Vec3 p, Vec3 n, float u1, float u2, Direc
     return true;
 }
 
-bool LightSet::sample_in_medium(size_t i, float u1, float u2, InScatterLight& out) const {
+bool LightSet::sample_in_medium(size_t i, float u1, float u2, InScatterLight& out, bool by_area) const {
     using Kind = InScatterLight::Kind;
     const Light& l = lights_[i];
     out = InScatterLight{};
@@ -215,7 +215,7 @@ bool LightSet::sample_in_medium(size_t i, float u1, float u2, InScatterLight& ou
         out.axis = l.normal;
         out.emission = l.desc.radiance * l.area;
         // Edges at right angles (a rectangle): sampled by solid angle at each distance sample.
-        if (std::abs(dot(l.desc.edge1, l.desc.edge2)) <= 1e-5f * length(l.desc.edge1) * length(l.desc.edge2)) {
+        if (!by_area && std::abs(dot(l.desc.edge1, l.desc.edge2)) <= 1e-5f * length(l.desc.edge1) * length(l.desc.edge2)) {
             out.rect = true;
             out.corner = l.desc.corner;
             out.edge1 = l.desc.edge1;

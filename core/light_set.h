@@ -117,7 +117,8 @@ public:
     // Light i sampled for in-scattering along a camera segment (InScatterLight); false for a
     // laser (a delta direction no camera ray meets: its single scattering stays with photons)
     // and for a light without power.
-    bool sample_in_medium(size_t i, float u1, float u2, InScatterLight& out) const;
+    // by_area: a rectangular quad too is one point of its area (`position`), as other quads are.
+    bool sample_in_medium(size_t i, float u1, float u2, InScatterLight& out, bool by_area = false) const;
     // No sample of light i arrives at p later than this (ns; +infinity where no cheap bound is
     // known: suns, emissive meshes). A carried section skips lights whose light is all earlier.
     double latest_arrival_ns(size_t i, Vec3 p) const;

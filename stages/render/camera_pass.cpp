@@ -82,6 +82,9 @@ struct PixelTracer {
     // The pixel whose first direct-light samples of the pass are stratified over the passes
     // (light_pass_point); -1 once they are taken, or with RenderContext::stratified_light_points off.
     int64_t light_points_pixel = -1;
+    // The same for the light samples of the in-scattering along the pixel's first camera
+    // segment in the medium (CameraSegment::stratified_pixel).
+    int64_t segment_points_pixel = -1;
     bool timed = false;               // count the cycles spent on in-scattering for this pixel
     uint64_t medium_cycles = 0;       // of this pixel (when timed)
 
@@ -120,6 +123,7 @@ struct PixelTracer {
         medium_cycles = 0;
         Rng rng(ctx.render.seed, 1, static_cast<uint64_t>(pass), pixel);
         light_points_pixel = ctx.stratified_light_points ? static_cast<int64_t>(pixel) : -1;
+        segment_points_pixel = light_points_pixel;
         float fx = static_cast<float>(pixel % ctx.width), fy = static_cast<float>(pixel / ctx.width);
         float weight = 1;
         if (!jitter(pixel, fx, fy, rng, weight)) return;
@@ -372,11 +376,7 @@ struct PixelTracer {
     // the R2 sequence of the pixel's point: the same sequence in both would tie each position in
     // the pixel to one spot on the lamp for every pass.
     void light_pass_point(size_t pixel, size_t light, float& u1, float& u2) const {
-        Rng offset(ctx.render.seed, 12, light, pixel);
-        const float a = offset.uniform(), b = offset.uniform();
-        const uint32_t n = static_cast<uint32_t>(pass);
-        u1 = add_mod1(a, radical_inverse(n, 2));
-        u2 = add_mod1(b, radical_inverse(n, 3));
+        halton_pass_point(ctx.render.seed, 12, light, pixel, static_cast<uint32_t>(pass), u1, u2);
     }
 
     // The piece of o + t d, t in (tnear, tfar), inside the medium: its in-scattering at once
@@ -394,6 +394,9 @@ struct PixelTracer {
         s.beta = beta;
         s.depth_left = static_cast<uint32_t>(ctx.render.max_depth - specular);
         s.camera_ns = leg_ns + t0 / kSpeedOfLight;
+        s.stratified_pixel = segment_points_pixel;
+        s.pass = static_cast<uint32_t>(pass);
+        segment_points_pixel = -1;
         if (!ctx.single_scatter_by_photons) {
             const uint64_t before = single.shadow_rays;
             single_scatter_along(ctx, s, rng, buffer, deposits, local, single);

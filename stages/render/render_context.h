@@ -71,6 +71,11 @@ struct RenderContext {
     // true: each pixel's first light samples of a pass come from a sequence stratified over the
     // passes (camera_pass.cpp, light_pass_point); false: from its random stream (tests compare).
     bool stratified_light_points = true;
+    // true (the program): with pulse emission, a rectangular quad's in-scattering is taken from
+    // one point of its area per camera segment, so that each frame's distance sample lands in
+    // that frame (single_scatter.cpp); false: by solid angle at every sample, as with constant
+    // emission (tests compare).
+    bool pulse_quads_by_area = true;
     // Image positions (pixel units) of the point and spot lights inside the medium in front of
     // the camera: the pixels round them sample their rays towards them (camera_pass.cpp).
     std::vector<std::array<float, 2>> light_images;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/glossy_path.h"
 #include "foundation/constants.h"
 
 namespace sl {
@@ -70,13 +71,19 @@ void single_scatter_along(const RenderContext& ctx, const CameraSegment& sg, Rng
         if (medium.sigma_t()[c] > 0) sigma_min = std::min(sigma_min, medium.sigma_t()[c]);
     const double back_ns = tof ? sg.camera_ns : 0.0;
     const Vec3 o = sg.origin, d = sg.dir;
+    // A pulse's frames are one pulse width of buckets each: a quad's light is then taken from one
+    // point of its area per segment, whose arrival times are the strata's own (docs/medium.md).
+    const bool quad_by_area = ctx.pulse_quads_by_area && ctx.emission == EmissionMode::Pulse;
 
     for (size_t i = 0; i < ctx.lights.count(); ++i) {
-        const float u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform(), u4 = rng.uniform(),
+        float u1 = rng.uniform(), u2 = rng.uniform();  // drawn even when replaced: 5 per light
+        if (sg.stratified_pixel >= 0)
+            halton_pass_point(ctx.render.seed, 13, i, static_cast<uint64_t>(sg.stratified_pixel), sg.pass, u1, u2);
+        const float u3 = rng.uniform(), u4 = rng.uniform(),
                     u5 = rng.uniform();
         if (!(S > 0)) continue;
         InScatterLight ls;
-        if (!ctx.lights.sample_in_medium(i, u1, u2, ls)) continue;
+        if (!ctx.lights.sample_in_medium(i, u1, u2, ls, quad_by_area)) continue;
         ArrivalCurve curve;
         curve.k = tof ? 1 : 0;
         Piece pieces[2];
