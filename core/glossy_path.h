@@ -119,15 +119,17 @@ inline float add_mod1(float a, float b) {
     return std::min(x >= 1.0f ? x - 1.0f : x, 0x1.fffffep-1f);
 }
 // A pixel's sample of a light in pass `pass`, stratified over the passes: point `pass` of the
-// Halton sequence in bases 2 and 3, shifted modulo 1 by an offset drawn from the random stream
-// (seed, stream, light, pixel), the same in every pass. Each pass's point is uniform (the
-// offset is), so an estimate keeps its mean; over the passes the points cover [0, 1)^2 evenly.
+// Halton sequence in bases 2 and 3 (and 5, for a third number u3 when asked), shifted modulo 1
+// by an offset drawn from the random stream (seed, stream, light, pixel), the same in every
+// pass. Each pass's point is uniform (the offset is), so an estimate keeps its mean; over the
+// passes the points cover [0, 1)^2 (or ^3) evenly.
 inline void halton_pass_point(uint64_t seed, uint64_t stream, uint64_t light, uint64_t pixel, uint32_t pass, float& u1,
-                              float& u2) {
+                              float& u2, float* u3 = nullptr) {
     Rng offset(seed, stream, light, pixel);
     const float a = offset.uniform(), b = offset.uniform();
     u1 = add_mod1(a, radical_inverse(pass, 2));
     u2 = add_mod1(b, radical_inverse(pass, 3));
+    if (u3) *u3 = add_mod1(offset.uniform(), radical_inverse(pass, 5));
 }
 inline BsdfDraw stratified_draw(int k, int n, BsdfDraw offset) {
     const uint32_t i = static_cast<uint32_t>(k);

@@ -76,11 +76,14 @@ void single_scatter_along(const RenderContext& ctx, const CameraSegment& sg, Rng
     const bool quad_by_area = ctx.pulse_quads_by_area && ctx.emission == EmissionMode::Pulse;
 
     for (size_t i = 0; i < ctx.lights.count(); ++i) {
-        float u1 = rng.uniform(), u2 = rng.uniform();  // drawn even when replaced: 5 per light
+        // The light sample (u1, u2) and the distances' uniform (u3), stratified over the passes
+        // along the pixel's first segment: in a shaft, where each distance sample is lit or not,
+        // independent ones leave the lit share a binomial count (the cathedral's first lit frames:
+        // 40 % noise, 31 % stratified). Drawn even when replaced: 5 uniforms per light always.
+        float u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform();
+        const float u4 = rng.uniform(), u5 = rng.uniform();
         if (sg.stratified_pixel >= 0)
-            halton_pass_point(ctx.render.seed, 13, i, static_cast<uint64_t>(sg.stratified_pixel), sg.pass, u1, u2);
-        const float u3 = rng.uniform(), u4 = rng.uniform(),
-                    u5 = rng.uniform();
+            halton_pass_point(ctx.render.seed, 13, i, static_cast<uint64_t>(sg.stratified_pixel), sg.pass, u1, u2, &u3);
         if (!(S > 0)) continue;
         InScatterLight ls;
         if (!ctx.lights.sample_in_medium(i, u1, u2, ls, quad_by_area)) continue;
