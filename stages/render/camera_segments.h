@@ -17,7 +17,7 @@ struct CameraSegment {
     uint32_t depth_left = 0;  // photon vertices this segment may still accept
     double camera_ns = 0;     // camera leg up to origin (ns), for camera_tof
     // The pixel's first segment in the pass: its light samples are stratified over the passes
-    // (halton_pass_point in core/glossy_path.h) for this pixel (its index in the image) and pass; -1:
+    // (halton_pass_point in core/pass_sequences.h) for this pixel (its index in the image) and pass; -1:
     // drawn from the path's random stream.
     int64_t stratified_pixel = -1;
     uint32_t pass = 0;
