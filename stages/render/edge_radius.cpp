@@ -21,11 +21,111 @@ struct CentreHit {
 constexpr float kSameSurface = 0.7f;  // the gather's own: normals within ~45 degrees
 constexpr int kMaxReach = 16;         // pixels searched each way at most
 constexpr float kFloor = 1.0f / 64;   // of r0: a guard, not a choice
+// Where a cut's mirror stands at least, in radii: gather_blockers.h's kMirrorMin.
+constexpr float kMirrorMin = 0.25f;
+// The edge pixels within this many rings of a pixel have the surface's end found between their
+// centre and the pixel's by bisection, to 1/64 of the way: the line can stand at the edge
+// itself, not a pixel step short of it (where the shrunk disc would serve half the pixel).
+constexpr int kRefined = 3;
+constexpr int kBisections = 6;
+constexpr float kChecks = 200;  // points of a cut's border checked at most (about)
+constexpr float kPiF = 3.14159265f;
+
+// An edge pixel q seen from p, on p's tangent plane: what q sees is not p's surface. `mid` is the
+// distance of the point half a step short of it (where the radius stops). The surface's end lies
+// between w and w - s for s one of sx, sy (offsets from p): for a pixel near p, w is the first
+// point found off the surface by bisection and sx the step back to the last one on it (sy zero);
+// for the others, w is q's centre and sx, sy a pixel step there along the image's axes (the end
+// lies within a step of q's centre along an axis, or it is nearer another edge pixel's).
+struct EdgePixel {
+    Vec3 w, sx, sy;
+    float mid;
+    // How much nearer p along u the surface's end may lie than q's centre.
+    float slack(Vec3 u) const { return std::max(std::abs(dot(sx, u)), std::abs(dot(sy, u))); }
+};
+
+// A candidate cut: a line across `across` (unit, on the tangent plane) at `offset` from p, the
+// radius, and the area it leaves (with the mirror at max(offset, radius / 4) on p's other side).
+struct Cut {
+    double area;
+    Vec3 across;
+    float offset, radius;
+};
+
+// The cuts that leave p a larger disc than the shrunk radius `shrunk` (by 5 % at least), the
+// largest first. The lines face the three nearest edge pixels; for each, an edge pixel whose
+// surface end lies beyond the line, or beyond its mirror (at max(offset, r0 / 4) on the other
+// side of p, as the gather puts it), is accounted for, and the others cap the radius at their
+// `mid`. Edge pixels sample the surface's end only along their own directions from p: the
+// caller still checks the region a cut keeps.
+std::vector<Cut> candidate_cuts(const std::vector<EdgePixel>& found, float r0, float p_step, float shrunk) {
+    std::vector<Cut> cuts;
+    const double least = 1.05 * 3.141592653589793 * shrunk * shrunk;
+    int nearest[3] = {-1, -1, -1};
+    for (int i = 0; i < static_cast<int>(found.size()); ++i) {
+        for (int j = 0; j < 3; ++j) {
+            if (nearest[j] < 0 || found[i].mid < found[nearest[j]].mid) {
+                for (int k = 2; k > j; --k) nearest[k] = nearest[k - 1];
+                nearest[j] = i;
+                break;
+            }
+        }
+    }
+    // For a line across u at d (the mirror at max(d, r0 / 4)), edge pixel e is left unaccounted
+    // for when its end may lie before the line (lo_e < d) and before the mirror (hi_e > -mirror);
+    // with d ascending these sets only grow, so the radius they cap is a running minimum over
+    // the edge pixels sorted by the d past which each one counts.
+    const float m = kMirrorMin * r0;
+    const size_t n = found.size();
+    std::vector<float> lo(n), hi(n);
+    std::vector<uint32_t> by_d(n), by_lo(n), by_t(n);
+    for (int c : nearest) {
+        if (c < 0) break;
+        const Vec3 u = normalize(found[c].w);
+        for (size_t e = 0; e < n; ++e) {
+            const float a = dot(found[e].w, u), sl = found[e].slack(u);
+            lo[e] = a - sl, hi[e] = a + sl;
+        }
+        for (size_t e = 0; e < n; ++e) by_d[e] = by_lo[e] = by_t[e] = static_cast<uint32_t>(e);
+        // Candidate lines, nearest first: a little behind p's centre at most (the points of the
+        // pixel before the line gather with it, the others in the shrunk disc).
+        std::sort(by_d.begin(), by_d.end(), [&](uint32_t x, uint32_t y) { return lo[x] < lo[y]; });
+        // Up to the mirror's floor (d <= m): e counts once lo_e < d, if hi_e > -m.
+        std::sort(by_lo.begin(), by_lo.end(), [&](uint32_t x, uint32_t y) { return lo[x] < lo[y]; });
+        // Past it (d > m, the mirror at d): e counts once max(lo_e, -hi_e) < d.
+        auto t_of = [&](uint32_t e) { return std::max(lo[e], -hi[e]); };
+        std::sort(by_t.begin(), by_t.end(), [&](uint32_t x, uint32_t y) { return t_of(x) < t_of(y); });
+        Cut best{least, u, 0, 0};
+        size_t i_lo = 0, i_t = 0;
+        float r_lo = r0, r_t = r0;
+        for (uint32_t cand : by_d) {
+            const float d = lo[cand];
+            if (!(d >= -0.5f * p_step)) continue;
+            if (d >= r0) break;
+            float r;
+            if (d <= m) {
+                for (; i_lo < n && lo[by_lo[i_lo]] < d; ++i_lo)
+                    if (hi[by_lo[i_lo]] > -m) r_lo = std::min(r_lo, found[by_lo[i_lo]].mid);
+                r = r_lo;
+            } else {
+                for (; i_t < n && t_of(by_t[i_t]) < d; ++i_t) r_t = std::min(r_t, found[by_t[i_t]].mid);
+                r = r_t;
+            }
+            r = std::max(r, kFloor * r0);
+            if (d >= r) continue;  // the line misses the disc: no better than no cut
+            const double area = disc_between_lines(r, std::max(d, 0.0f), std::max(d, kMirrorMin * r));
+            if (area > best.area) best = Cut{area, u, d, r};
+        }
+        if (best.radius > 0) cuts.push_back(best);
+    }
+    std::sort(cuts.begin(), cuts.end(), [](const Cut& x, const Cut& y) { return x.area > y.area; });
+    return cuts;
+}
 
 }  // namespace
 
-std::vector<float> edge_aware_radii(const SceneGeometry& geometry, const PinholeCamera& camera, int width,
-                                    int height, float r0) {
+GatherRadii edge_aware_radii(const SceneGeometry& geometry, const PinholeCamera& camera, int width, int height,
+                             float r0) {
     const size_t n = static_cast<size_t>(width) * height;
     std::vector<CentreHit> hits(n);
     const Vec3 eye = camera.position();
@@ -94,8 +194,12 @@ std::vector<float> edge_aware_radii(const SceneGeometry& geometry, const Pinhole
         x0 = std::max(x0, 0), y0 = std::max(y0, 0), x1 = std::min(x1, width - 1), y1 = std::min(y1, height - 1);
         return marked[(y1 + 1) * w1 + x1 + 1] + marked[y0 * w1 + x0] != marked[y0 * w1 + x1 + 1] + marked[(y1 + 1) * w1 + x0];
     };
-    std::vector<float> radius(n, r0);
+    GatherRadii out;
+    out.radius.assign(n, r0);
+    std::vector<EdgeCut> cut_of_pixel(n);  // shrunk == 0: none (gathered into out.cuts below)
+    std::vector<uint8_t> has_cut(n, 0);
     tbb::parallel_for(0, height, [&](int y) {
+        std::vector<EdgePixel> found;
         for (int x = 0; x < width; ++x) {
             const CentreHit& ph = hits[static_cast<size_t>(y) * width + x];
             if (!(ph.t >= 0)) continue;
@@ -108,6 +212,69 @@ std::vector<float> edge_aware_radii(const SceneGeometry& geometry, const Pinhole
                 const float dn = dot(p.normal, d);
                 if (!(dn < 0)) return false;
                 out = eye + d * (plane / dn);
+                return true;
+            };
+            // Where p's surface ends between p's centre and edge pixel q's, along the image's
+            // segment between them, by bisection (rays through points of the image): `lo` the last
+            // point found on the surface, `hi` the first off it, as offsets on p's tangent plane.
+            auto edge_between = [&](const Seen& p, int x, int y, int qx, int qy, Vec3& lo, Vec3& hi) {
+                float a = 0, b = 1;
+                for (int i = 0; i < kBisections; ++i) {
+                    const float t = 0.5f * (a + b);
+                    const float fx = x + 0.5f + t * (qx - x), fy = y + 0.5f + t * (qy - y);
+                    const Vec3 d = camera.direction(fx, fy);
+                    SurfaceHit h;
+                    bool off = true;
+                    if (geometry.intersect(eye, d, 0, 1e30f, h)) {
+                        const Vec3 hn = dot(h.normal, d) < 0 ? h.normal : -h.normal;
+                        const float height = dot(p.normal, h.position - p.position);
+                        off = height < -slack || (height <= slack && dot(p.normal, hn) < kSameSurface);
+                    }
+                    (off ? b : a) = t;
+                }
+                Vec3 pa, pb;
+                if (!on_plane(x + 0.5f + a * (qx - x), y + 0.5f + a * (qy - y), pa) ||
+                    !on_plane(x + 0.5f + b * (qx - x), y + 0.5f + b * (qy - y), pb))
+                    return false;
+                lo = pa - p.position, hi = pb - p.position;
+                return true;
+            };
+            // Whether all a cut keeps of p's disc is p's surface, as seen through the camera:
+            // what ends the surface inside the kept region and not beyond its border is a hole,
+            // and a hole as wide as a pixel has an edge pixel there, which the cut's radius
+            // accounts for already. So the border is checked: points along the line, the mirror
+            // and the rim, a little inside, every half pixel step (about kChecks at most), each
+            // through its own ray from the eye.
+            auto keeps_only_the_surface = [&](const Seen& p, const Cut& c, float p_step) {
+                const float R = c.radius, mirror = std::max(c.offset, kMirrorMin * R);
+                const float border = 2 * (c.offset + mirror) + 2 * kPiF * R;  // more than its length
+                const float h = std::max(0.5f * p_step, border / kChecks);
+                if (!(h > 0) || !(c.offset + mirror > 0) || !(R > 0)) return false;
+                const Vec3 v = cross(p.normal, c.across);
+                auto on_surface = [&](float sa, float t) {
+                    const Vec3 q = p.position + c.across * sa + v * t;
+                    float fx, fy;
+                    if (!camera.project(q, fx, fy)) return false;
+                    SurfaceHit hit;
+                    const Vec3 d = camera.direction(fx, fy);
+                    if (!geometry.intersect(eye, d, 0, 1e30f, hit)) return false;
+                    const Vec3 hn = dot(hit.normal, d) < 0 ? hit.normal : -hit.normal;
+                    const float height = dot(p.normal, hit.position - p.position);
+                    return !(height < -slack || (height <= slack && dot(p.normal, hn) < kSameSurface));
+                };
+                const float inside = 0.25f * h;
+                for (const float sa : {c.offset - inside, -mirror + inside}) {  // the two lines
+                    const float half = std::sqrt(std::max(0.0f, R * R - sa * sa));
+                    const int n = static_cast<int>(std::ceil(std::min(2 * half / h, 2 * kChecks)));
+                    for (int j = 0; j <= n; ++j)
+                        if (!on_surface(sa, (n > 0 ? 2.0f * j / n - 1 : 0) * half * 0.999f)) return false;
+                }
+                const float rim = std::max(R - inside, 0.0f);
+                const int n = static_cast<int>(std::ceil(std::min(2 * kPiF * rim / h, 2 * kChecks)));
+                for (int j = 0; j < n; ++j) {
+                    const float a = 2 * kPiF * (j + 0.5f) / n, sa = rim * std::cos(a);
+                    if (sa > -mirror && sa < c.offset && !on_surface(sa, rim * std::sin(a))) return false;
+                }
                 return true;
             };
             Vec3 ax, ay;
@@ -124,29 +291,86 @@ std::vector<float> edge_aware_radii(const SceneGeometry& geometry, const Pinhole
             // (A silhouette's pixel that sees the floor behind at its centre keeps the floor's
             // radius for its points on the object too: halving it as well cut that pixel's bias
             // little and cost 14 % more per-pixel noise in a Cornell box's pulse.)
-            float best = r0;
-            // Ring by ring outward; a ring k pixels out lies at least about (k - 1/2) steps away.
-            for (int k = first; k <= reach && 0.9f * (k - 0.5f) * step < best; ++k) {
-                for (int dy = -k; dy <= k; ++dy) {
-                    const int qy = y + dy;
-                    if (qy < 0 || qy >= height) continue;
-                    const bool full_row = dy == -k || dy == k;
-                    for (int dx = -k; dx <= k; dx += full_row ? 1 : 2 * k) {
-                        const int qx = x + dx;
-                        if (qx < 0 || qx >= width || !mark[static_cast<size_t>(qy) * width + qx]) continue;
-                        if (!ends(p, hits[static_cast<size_t>(qy) * width + qx], qx, qy)) continue;
-                        Vec3 xq;
-                        if (!on_plane(qx + 0.5f, qy + 0.5f, xq)) continue;
-                        // The edge lies between q and the last pixel before it: half a pixel short of q.
-                        const float kq = std::sqrt(static_cast<float>(dx * dx + dy * dy));
-                        best = std::min(best, (kq - 0.5f) / kq * length(xq - p.position));
-                    }
+            // Every pixel within reach that ends p's surface, ring by ring outward (each side of
+            // a ring only when the summed-area table has a marked pixel on it).
+            found.clear();
+            auto visit = [&](int qx, int qy, int k) {
+                if (!mark[static_cast<size_t>(qy) * width + qx]) return;
+                if (!ends(p, hits[static_cast<size_t>(qy) * width + qx], qx, qy)) return;
+                Vec3 xq;
+                if (!on_plane(qx + 0.5f, qy + 0.5f, xq)) return;
+                const int dx = qx - x, dy = qy - y;
+                const float kq = std::sqrt(static_cast<float>(dx * dx + dy * dy));
+                const Vec3 w = xq - p.position;
+                // The edge lies between q and the last pixel before it: half a pixel short of q
+                // for the radius; for a cut's line, found by bisection or within a step of q.
+                const float mid = (kq - 0.5f) / kq * length(w);
+                if (!(mid < r0)) return;
+                Vec3 lo, hi;
+                if (k <= kRefined && edge_between(p, x, y, qx, qy, lo, hi)) {
+                    found.push_back({hi, hi - lo, Vec3(0), mid});
+                    return;
+                }
+                Vec3 qx1, qy1;
+                if (!on_plane(qx + 1.5f, qy + 0.5f, qx1) || !on_plane(qx + 0.5f, qy + 1.5f, qy1)) {
+                    found.push_back({w, Vec3(1e30f), Vec3(1e30f), mid});  // a step past the horizon: no line accounts for q
+                    return;
+                }
+                found.push_back({w, qx1 - xq, qy1 - xq, mid});
+            };
+            for (int k = first; k <= reach; ++k) {
+                const int x0 = std::max(x - k, 0), x1 = std::min(x + k, width - 1);
+                for (const int qy : {y - k, y + k}) {  // the top and bottom rows
+                    if (qy < 0 || qy >= height || !any_marked(x0, qy, x1, qy)) continue;
+                    for (int qx = x0; qx <= x1; ++qx) visit(qx, qy, k);
+                }
+                const int y0 = std::max(y - k + 1, 0), y1 = std::min(y + k - 1, height - 1);
+                for (const int qx : {x - k, x + k}) {  // the left and right columns between them
+                    if (qx < 0 || qx >= width || y0 > y1 || !any_marked(qx, y0, qx, y1)) continue;
+                    for (int qy = y0; qy <= y1; ++qy) visit(qx, qy, k);
                 }
             }
-            radius[static_cast<size_t>(y) * width + x] = std::max(best, kFloor * r0);
+            if (found.empty()) continue;
+            float best = r0;
+            for (const EdgePixel& e : found) best = std::min(best, e.mid);
+            best = std::max(best, kFloor * r0);
+            out.radius[static_cast<size_t>(y) * width + x] = best;
+            Vec3 across;
+            float offset = 0, radius = 0;
+            bool cut = false;
+            for (const Cut& c : candidate_cuts(found, r0, step, best)) {
+                if (!keeps_only_the_surface(p, c, step)) continue;
+                across = c.across, offset = c.offset, radius = c.radius, cut = true;
+                break;
+            }
+            if (!cut) continue;
+            const size_t i = static_cast<size_t>(y) * width + x;
+            out.radius[i] = radius;
+            cut_of_pixel[i] = EdgeCut{encode_normal(across), dot(across, p.position) + offset, encode_normal(p.normal),
+                                      dot(p.normal, p.position), best / radius};
+            has_cut[i] = 1;
         }
     });
-    return radius;
+    size_t cuts = 0;
+    for (uint8_t c : has_cut) cuts += c;
+    if (cuts > 0) {
+        out.cut_of.assign(n, 0);
+        out.cuts.reserve(cuts);
+        for (size_t i = 0; i < n; ++i) {
+            if (!has_cut[i]) continue;
+            out.cuts.push_back(cut_of_pixel[i]);
+            out.cut_of[i] = static_cast<uint32_t>(out.cuts.size());
+        }
+    }
+    return out;
+}
+
+double disc_between_lines(double R, double near, double far) {
+    auto segment = [R](double h) {  // the disc beyond a chord h >= 0 from the centre
+        if (h >= R) return 0.0;
+        return R * R * std::acos(h / R) - h * std::sqrt(R * R - h * h);
+    };
+    return 3.141592653589793 * R * R - segment(std::max(near, 0.0)) - segment(std::max(far, 0.0));
 }
 
 }  // namespace sl

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/sampling.h"
+#include "stages/render/edge_radius.h"
 
 namespace sl {
 namespace {
@@ -91,10 +92,25 @@ bool nothing_rises(const SceneGeometry& geometry, Vec3 o, float reach, Vec3 p, V
 
 }  // namespace
 
-GatherBlockers::GatherBlockers(const SceneGeometry& geometry, Vec3 p, Vec3 n, float r2) : p_(p) {
+GatherBlockers::GatherBlockers(const SceneGeometry& geometry, Vec3 p, Vec3 n, float r2, const EdgeLine* edge)
+    : p_(p) {
     make_basis(n, t_, b_);
     const float R = std::sqrt(r2);
     area_ = kPi * static_cast<double>(r2);
+    // The edge's line on this point's tangent plane (the cut was made at the pixel's centre, on
+    // its surface: this point lies a little off it). A point on or past the line has no side to
+    // keep: the caller gathers without the cut then.
+    float edge_rho = 0, edge_x = 0, edge_y = 0;
+    if (edge) {
+        const float gt = dot(edge->across, t_), gb = dot(edge->across, b_), gl = std::sqrt(gt * gt + gb * gb);
+        const float d = edge->offset - dot(edge->across, p);
+        if (gl > 0.5f && d > 0) {
+            edge_ = true;
+            edge_rho_ = edge_rho = d / gl;
+            edge_x_ = edge_x = gt / gl;
+            edge_y_ = edge_y = gb / gl;
+        }
+    }
     const float lift = std::max(ray_epsilon(p, R), 1e-3f * R);
     const Vec3 o = p + n * lift;
     const float tmax = kReach * R / kCos;
@@ -104,10 +120,10 @@ GatherBlockers::GatherBlockers(const SceneGeometry& geometry, Vec3 p, Vec3 n, fl
     // own and the pixels do not change. A point query, wider than the rays' reach, answers that;
     // the clear ball it finds also answers for the next points on this thread that lie on the
     // same plane well inside it (neighbouring pixels of one floor): a few queries for many points.
-    if (nothing_rises(geometry, o, tmax * 1.001f, p, n, 0.5f * lift)) return;
     float rho[kSectors], ux[kSectors], uy[kSectors];  // each blocker's trace on the tangent plane
     bool cuts[kSectors] = {};
-    for (int s = 0; s < kSectors; ++s) {
+    const bool walls = !nothing_rises(geometry, o, tmax * 1.001f, p, n, 0.5f * lift);
+    for (int s = 0; walls && s < kSectors; ++s) {
         const float a = (static_cast<float>(s) + 0.5f) * kSectorAngle;
         const Vec3 u = t_ * std::cos(a) + b_ * std::sin(a);
         const Vec3 d = u * kCos + n * kSin;
@@ -144,9 +160,20 @@ GatherBlockers::GatherBlockers(const SceneGeometry& geometry, Vec3 p, Vec3 n, fl
         if (distinct(mirror_d_, mirror_x_, mirror_y_, mirrors_, d, -ux[s], -uy[s]))
             mirror_d_[mirrors_] = d, mirror_x_[mirrors_] = -ux[s], mirror_y_[mirrors_++] = -uy[s];
     }
+    if (edge_) {
+        const float d = std::max(edge_rho, kMirrorMin * R);
+        if (distinct(mirror_d_, mirror_x_, mirror_y_, mirrors_, d, -edge_x, -edge_y))
+            mirror_d_[mirrors_] = d, mirror_x_[mirrors_] = -edge_x, mirror_y_[mirrors_++] = -edge_y;
+        if (!mask_) {  // the edge alone: two parallel chords, exactly
+            area_ = disc_between_lines(R, edge_rho, d);
+            area_ = std::max(area_, kPi * static_cast<double>(r2) * 1e-3);
+            return;
+        }
+    }
     for (int s = 0; mask_ && s < kSectors; ++s) {
-        float r[3 + kSectors], x[3 + kSectors], y[3 + kSectors];
+        float r[5 + kSectors], x[5 + kSectors], y[5 + kSectors];  // edge, 3 walls, 5 mirrors
         int lines = 0;
+        if (edge_) r[lines] = edge_rho, x[lines] = edge_x, y[lines++] = edge_y;
         for (int j = s - 1; j <= s + 1; ++j) {
             const int k = j & (kSectors - 1);
             if (cuts[k] && distinct(r, x, y, lines, rho[k], ux[k], uy[k]))

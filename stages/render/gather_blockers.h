@@ -26,21 +26,31 @@ namespace sl {
 class GatherBlockers {
 public:
     static constexpr int kSectors = 4;
-    // Rays from p (normal n, unit, facing the camera path) reaching sqrt(r2) along the disc.
-    GatherBlockers(const SceneGeometry& geometry, Vec3 p, Vec3 n, float r2);
+    // An edge's line (edge_radius.h): offsets x with dot(across, x) > offset lie past the edge.
+    struct EdgeLine {
+        Vec3 across;
+        float offset;
+    };
+    // Rays from p (normal n, unit, facing the camera path) reaching sqrt(r2) along the disc;
+    // with `edge`, the disc is cut at that line too (and at its mirror, as at a wall).
+    GatherBlockers(const SceneGeometry& geometry, Vec3 p, Vec3 n, float r2, const EdgeLine* edge = nullptr);
 
     bool any() const { return mask_ != 0; }
+    // Whether the edge line cuts this point's disc (false: the point lies on or past it).
+    bool edge_cut() const { return edge_; }
     // The disc's area on the point's side of every blocker (pi r^2 when none).
     double area() const { return area_; }
     // Whether a photon at q lies on the point's side of the blockers of its sector and of the
     // two sectors beside it (a wall nearly along one sector's middle ray is missed by that ray,
     // not by its neighbours'), and inside every blocker's mirror line.
     bool visible(Vec3 q) const {
-        if (!mask_) return true;
+        if (!mask_ && !edge_) return true;
         const Vec3 v = q - p_;
         const float x = dot(v, t_), y = dot(v, b_);
+        if (edge_ && x * edge_x_ + y * edge_y_ > edge_rho_) return false;
         for (int i = 0; i < mirrors_; ++i)
             if (x * mirror_x_[i] + y * mirror_y_[i] > mirror_d_[i]) return false;
+        if (!mask_) return true;
         const int s = sector_of(x, y);
         const uint32_t near = near_mask_[s] & mask_;
         if (!near) return true;
@@ -67,7 +77,10 @@ private:
     // cut as much on the far side of the point as the blocker cuts it (tangent-plane offsets
     // (x, y) with x mx + y my > d are left out), so what is kept is centred on the point.
     static constexpr float kMirrorMin = 0.25f;
-    float mirror_x_[kSectors], mirror_y_[kSectors], mirror_d_[kSectors];
+    float mirror_x_[kSectors + 1], mirror_y_[kSectors + 1], mirror_d_[kSectors + 1];
+    // The edge's line: tangent-plane offsets with x edge_x + y edge_y > edge_rho lie past it.
+    bool edge_ = false;
+    float edge_rho_ = 0, edge_x_ = 0, edge_y_ = 0;
     int mirrors_ = 0;
     double area_ = 0;
 };

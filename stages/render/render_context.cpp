@@ -54,7 +54,7 @@ RenderContext::RenderContext(const SceneDesc& desc)
     }
 }
 
-const std::vector<float>& RenderContext::gather_radii() const {
+const GatherRadii& RenderContext::gather_radii() const {
     std::call_once(radii_once_, [this] {
         if (automatic_radius_) gather_radii_ = edge_aware_radii(geometry, camera, width, height, initial_radius);
     });

@@ -12,6 +12,7 @@
 #include "core/camera.h"
 #include "core/light_set.h"
 #include "core/material_table.h"
+#include "stages/render/edge_radius.h"
 #include "core/medium.h"
 #include "core/scene_geometry.h"
 #include "foundation/timeline.h"
@@ -36,7 +37,8 @@ struct RenderContext {
     // nearest edge of the surface the pixel sees (edge_radius.h); empty when the scene sets its
     // radius (every pixel starts at initial_radius). Made at the first call (a ray a pixel:
     // `info` and the memory plan's pilot never need it), by any thread.
-    const std::vector<float>& gather_radii() const;
+    // Where a pixel's disc is cut at an edge's line instead, the cut (GatherRadii::cut).
+    const GatherRadii& gather_radii() const;
     // The medium, only when there is something to compute (present, some extinction, a box
     // of some volume): without it every stage runs its vacuum code and allocates nothing.
     std::optional<HomogeneousMedium> medium;
@@ -76,6 +78,10 @@ struct RenderContext {
     // that frame (single_scatter.cpp); false: by solid angle at every sample, as with constant
     // emission (tests compare).
     bool pulse_quads_by_area = true;
+    // true (the program): beside an edge, a pixel's disc keeps its size and is cut at the edge's
+    // line where one accounts for it (edge_radius.h); false: every point of such a pixel
+    // gathers in the disc shrunk to the edge's distance, as before the cuts (tests compare).
+    bool edge_cuts = true;
     // Image positions (pixel units) of the point and spot lights inside the medium in front of
     // the camera: the pixels round them sample their rays towards them (camera_pass.cpp).
     std::vector<std::array<float, 2>> light_images;
@@ -88,7 +94,7 @@ struct RenderContext {
 private:
     bool automatic_radius_ = true;
     mutable std::once_flag radii_once_;
-    mutable std::vector<float> gather_radii_;
+    mutable GatherRadii gather_radii_;
 };
 
 // The initial gather radius: the scene's own, or about three pixel footprints at the middle of

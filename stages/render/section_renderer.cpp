@@ -43,7 +43,7 @@ std::unique_ptr<SectionBuffer> new_section_buffer(const RenderContext& ctx, cons
     auto b = ex ? std::make_unique<SectionBuffer>(PixelShare{ex->rank(), ex->ranks(), ctx.pixels()}, layout,
                                                   ctx.initial_radius, ctx.has_ambient())
                 : std::make_unique<SectionBuffer>(ctx.pixels(), layout, ctx.initial_radius, ctx.has_ambient());
-    if (!ctx.gather_radii().empty()) b->set_initial_radii(ctx.gather_radii());
+    if (!ctx.gather_radii().radius.empty()) b->set_initial_radii(ctx.gather_radii().radius);
     return b;
 }
 

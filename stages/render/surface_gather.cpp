@@ -4,6 +4,7 @@
 
 #include "core/glossy_path.h"
 #include "core/sampling.h"
+#include "stages/render/edge_radius.h"
 #include "stages/render/gather_blockers.h"
 
 namespace sl {
@@ -22,18 +23,33 @@ uint32_t gather_with(const RenderContext& ctx, const VisiblePoint& vp, const Pho
     const double inv_count = 1.0 / static_cast<double>(std::max<int64_t>(photons_emitted, 1));
     double& r2 = buffer.radius2[pixel];
     const Vec3 n = vp.normal, p = vp.position;
+    // Beside an edge of the surface the pixel's centre sees, the disc is cut at the edge's line
+    // (edge_radius.h) when this point lies on that surface, before the line; else it gathers
+    // in the disc shrunk to the edge's distance (the pixel's radius times the cut's `shrunk`).
+    const EdgeCut* cut = ctx.gather_radii().cut(buffer.share.global(pixel));
+    GatherBlockers::EdgeLine line{};
+    bool use_cut = false;
+    double gather_r2 = r2;
+    if (cut) {
+        const Vec3 cn = decode_normal(cut->normal);
+        line = {decode_normal(cut->across), cut->offset};
+        const float slack = 0.1f * static_cast<float>(std::sqrt(r2));
+        use_cut = ctx.edge_cuts && dot(cn, n) >= kSameSurface && std::abs(dot(cn, p) - cut->plane) <= slack &&
+                  dot(line.across, p) < line.offset;
+        if (!use_cut) gather_r2 = r2 * static_cast<double>(cut->shrunk) * cut->shrunk;
+    }
     // The surfaces that cut the disc (a wall at a floor's edge): photons beyond them are not
     // gathered, and the disc's area is what is left of it (gather_blockers.h).
-    const GatherBlockers blockers(ctx.geometry, p, n, static_cast<float>(r2));
+    const GatherBlockers blockers(ctx.geometry, p, n, static_cast<float>(gather_r2), use_cut ? &line : nullptr);
     // This pass's estimate: f * flux / (area * photons emitted this pass), area pi R^2 but for blockers.
     const float k = static_cast<float>(inv_count / blockers.area());
     auto add = adder(k);
     // Sides: a photon counts only on the side of its own surface the point is on, and only if it
     // is not below the point's surface (stacked sheets, a thin table over a floor). The slack
     // (a tenth of the radius) lets curved surfaces of curvature radius above ~5 R through.
-    const float slack = 0.1f * static_cast<float>(std::sqrt(r2));
+    const float slack = 0.1f * static_cast<float>(std::sqrt(gather_r2));
     uint32_t found = 0;
-    photons.for_each_near(p.x, p.y, p.z, static_cast<float>(r2), [&](const PhotonRecord& ph) {
+    photons.for_each_near(p.x, p.y, p.z, static_cast<float>(gather_r2), [&](const PhotonRecord& ph) {
         // cos(angle) < kSameSurface, without normalising the decoded normal.
         const Vec3 pn = decode_normal_unnormalized(ph.normal);
         const float c = dot(pn, n);
