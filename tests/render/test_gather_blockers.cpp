@@ -3,7 +3,8 @@
 // one beyond its mirror line (at max(D, R/4) on the other side), a segment at distance d being
 // R^2 acos(d/R) - d sqrt(R^2 - d^2), whatever the wall's direction against the point's tangent
 // frame, and keeps exactly the photons in between; a point inside a large sphere (a concave
-// surface) and one on an open floor keep the whole disc.
+// surface) and one on an open floor keep the whole disc. An edge's line cuts the disc the same
+// way, alone and beside a wall.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -64,6 +65,48 @@ TEST(GatherBlockers, APointBesideAWallKeepsTheDiscLessTheSegmentBeyondIt) {
                 if (D < R && D > 0.003 && dot(within - p, within - p) < R * R) { EXPECT_TRUE(b.visible(within)) << s; }
             }
         }
+    }
+}
+
+TEST(GatherBlockers, AnEdgeLineCutsTheDiscAsAWallDoesAloneAndBesideOne) {
+    // An edge's line (edge_radius.h) on the floor, parallel to the wall, on the point's other
+    // side: alone on open floor, the disc less the segment beyond the line and the one beyond its
+    // mirror (max(E, R/4) away); beside the wall, the strip between the nearer of each side's
+    // line and the other side's mirror, whichever way the two are turned against the tangent frame.
+    const float R = 0.1f;
+    auto segment = [R](double d) { return d >= R ? 0.0 : R * R * std::acos(d / R) - d * std::sqrt(R * R - d * d); };
+    for (float angle : {0.0f, 0.7853982f, 1.1f}) {
+        RenderContext ctx(floor_and_wall(angle));
+        const Vec3 across_wall{std::cos(angle), 0, -std::sin(angle)};  // from the wall towards the point
+        for (double E : {0.003, 0.02, 0.06, 0.15}) {
+            // Open floor, far from the wall: only the edge cuts.
+            const Vec3 far = across_wall * 2.0f;
+            const GatherBlockers::EdgeLine line{across_wall, dot(across_wall, far) + static_cast<float>(E)};
+            GatherBlockers open(ctx.geometry, far, {0, 1, 0}, R * R, &line);
+            SCOPED_TRACE(::testing::Message() << "turned " << angle << ", edge at " << E);
+            ASSERT_TRUE(open.edge_cut());
+            EXPECT_FALSE(open.any());
+            EXPECT_NEAR(open.area(), kPiD * R * R - segment(E) - segment(std::max(E, 0.25 * R)), 1e-4 * kPiD * R * R);
+            EXPECT_FALSE(open.visible(far + across_wall * static_cast<float>(E + 0.002)));
+            EXPECT_TRUE(open.visible(far + across_wall * static_cast<float>(E - 0.002)));
+            // Beside the wall, D from it: the wall's side and the edge's side, each cut at the
+            // nearer of its own line and the other's mirror.
+            for (double D : {0.01, 0.05}) {
+                const Vec3 p = across_wall * static_cast<float>(D);
+                const GatherBlockers::EdgeLine near_line{across_wall, dot(across_wall, p) + static_cast<float>(E)};
+                GatherBlockers b(ctx.geometry, p, {0, 1, 0}, R * R, &near_line);
+                ASSERT_TRUE(b.any() && b.edge_cut());
+                const double wall_side = std::min(D, std::max(E, 0.25 * R)), edge_side = std::min(E, std::max(D, 0.25 * R));
+                EXPECT_NEAR(b.area(), kPiD * R * R - segment(wall_side) - segment(edge_side), 0.004 * kPiD * R * R) << D;
+                EXPECT_FALSE(b.visible(p + across_wall * static_cast<float>(edge_side + 0.002))) << D;
+                EXPECT_FALSE(b.visible(p - across_wall * static_cast<float>(wall_side + 0.002))) << D;
+                EXPECT_TRUE(b.visible(p + across_wall * static_cast<float>(0.5 * (edge_side - wall_side)))) << D;
+            }
+        }
+        // A point on or past the line: no cut (the caller's shrunk disc serves it).
+        const Vec3 far = across_wall * 2.0f;
+        const GatherBlockers::EdgeLine behind{across_wall, dot(across_wall, far) - 0.01f};
+        EXPECT_FALSE(GatherBlockers(ctx.geometry, far, {0, 1, 0}, R * R, &behind).edge_cut());
     }
 }
 
