@@ -7,6 +7,7 @@
 #include <cstdint>
 
 #include "core/oct_normal.h"
+#include "stages/render/gather_blockers.h"
 
 namespace sl {
 namespace {
@@ -21,8 +22,8 @@ struct CentreHit {
 constexpr float kSameSurface = 0.7f;  // the gather's own: normals within ~45 degrees
 constexpr int kMaxReach = 16;         // pixels searched each way at most
 constexpr float kFloor = 1.0f / 64;   // of r0: a guard, not a choice
-// Where a cut's mirror stands at least, in radii: gather_blockers.h's kMirrorMin.
-constexpr float kMirrorMin = 0.25f;
+// Where a cut's mirror stands at least, in radii: the gather's own.
+constexpr float kMirrorMin = GatherBlockers::kMirrorMin;
 // The edge pixels within this many rings of a pixel have the surface's end found between their
 // centre and the pixel's by bisection, to 1/64 of the way: the line can stand at the edge
 // itself, not a pixel step short of it (where the shrunk disc would serve half the pixel).
@@ -151,12 +152,20 @@ GatherRadii edge_aware_radii(const SceneGeometry& geometry, const PinholeCamera&
     // Whether what q sees ends p's surface: nothing, something behind p's tangent plane, or
     // something turned away on it. In front of the plane is a wall rising (the blockers') or
     // something nearer the eye, behind which p's surface goes on.
-    auto ends = [&](const Seen& p, const CentreHit& qh, int qx, int qy) {
-        if (!(qh.t >= 0)) return true;
-        const Seen q = decoded(qh, qx, qy);
+    auto off = [&](const Seen& p, const Seen& q) {
         const float h = dot(p.normal, q.position - p.position);
         if (h > slack) return false;
         return h < -slack || dot(p.normal, q.normal) < kSameSurface;
+    };
+    auto ends = [&](const Seen& p, const CentreHit& qh, int qx, int qy) {
+        return !(qh.t >= 0) || off(p, decoded(qh, qx, qy));
+    };
+    // The same for the ray through image point (fx, fy), cast now (the bisections, the checks).
+    auto ends_at = [&](const Seen& p, float fx, float fy) {
+        const Vec3 d = camera.direction(fx, fy);
+        SurfaceHit h;
+        if (!geometry.intersect(eye, d, 0, 1e30f, h)) return true;
+        return off(p, Seen{h.position, dot(h.normal, d) < 0 ? h.normal : -h.normal});
     };
     // Pixels beside an edge, summed over the image (a summed-area table): a pixel with none
     // within its reach keeps r0 without a search (most of them).
@@ -196,8 +205,9 @@ GatherRadii edge_aware_radii(const SceneGeometry& geometry, const PinholeCamera&
     };
     GatherRadii out;
     out.radius.assign(n, r0);
-    std::vector<EdgeCut> cut_of_pixel(n);  // shrunk == 0: none (gathered into out.cuts below)
-    std::vector<uint8_t> has_cut(n, 0);
+    // Each row's cuts (pixel, cut), joined in row order below: only the cuts are held, not a
+    // cut's room for every pixel.
+    std::vector<std::vector<std::pair<uint32_t, EdgeCut>>> row_cuts(height);
     tbb::parallel_for(0, height, [&](int y) {
         std::vector<EdgePixel> found;
         for (int x = 0; x < width; ++x) {
@@ -221,16 +231,7 @@ GatherRadii edge_aware_radii(const SceneGeometry& geometry, const PinholeCamera&
                 float a = 0, b = 1;
                 for (int i = 0; i < kBisections; ++i) {
                     const float t = 0.5f * (a + b);
-                    const float fx = x + 0.5f + t * (qx - x), fy = y + 0.5f + t * (qy - y);
-                    const Vec3 d = camera.direction(fx, fy);
-                    SurfaceHit h;
-                    bool off = true;
-                    if (geometry.intersect(eye, d, 0, 1e30f, h)) {
-                        const Vec3 hn = dot(h.normal, d) < 0 ? h.normal : -h.normal;
-                        const float height = dot(p.normal, h.position - p.position);
-                        off = height < -slack || (height <= slack && dot(p.normal, hn) < kSameSurface);
-                    }
-                    (off ? b : a) = t;
+                    (ends_at(p, x + 0.5f + t * (qx - x), y + 0.5f + t * (qy - y)) ? b : a) = t;
                 }
                 Vec3 pa, pb;
                 if (!on_plane(x + 0.5f + a * (qx - x), y + 0.5f + a * (qy - y), pa) ||
@@ -252,15 +253,8 @@ GatherRadii edge_aware_radii(const SceneGeometry& geometry, const PinholeCamera&
                 if (!(h > 0) || !(c.offset + mirror > 0) || !(R > 0)) return false;
                 const Vec3 v = cross(p.normal, c.across);
                 auto on_surface = [&](float sa, float t) {
-                    const Vec3 q = p.position + c.across * sa + v * t;
                     float fx, fy;
-                    if (!camera.project(q, fx, fy)) return false;
-                    SurfaceHit hit;
-                    const Vec3 d = camera.direction(fx, fy);
-                    if (!geometry.intersect(eye, d, 0, 1e30f, hit)) return false;
-                    const Vec3 hn = dot(hit.normal, d) < 0 ? hit.normal : -hit.normal;
-                    const float height = dot(p.normal, hit.position - p.position);
-                    return !(height < -slack || (height <= slack && dot(p.normal, hn) < kSameSurface));
+                    return camera.project(p.position + c.across * sa + v * t, fx, fy) && !ends_at(p, fx, fy);
                 };
                 const float inside = 0.25f * h;
                 for (const float sa : {c.offset - inside, -mirror + inside}) {  // the two lines
@@ -346,20 +340,21 @@ GatherRadii edge_aware_radii(const SceneGeometry& geometry, const PinholeCamera&
             if (!cut) continue;
             const size_t i = static_cast<size_t>(y) * width + x;
             out.radius[i] = radius;
-            cut_of_pixel[i] = EdgeCut{encode_normal(across), dot(across, p.position) + offset, encode_normal(p.normal),
-                                      dot(p.normal, p.position), best / radius};
-            has_cut[i] = 1;
+            row_cuts[y].push_back({static_cast<uint32_t>(i),
+                                   EdgeCut{encode_normal(across), dot(across, p.position) + offset,
+                                           encode_normal(p.normal), dot(p.normal, p.position), best / radius}});
         }
     });
     size_t cuts = 0;
-    for (uint8_t c : has_cut) cuts += c;
+    for (const auto& row : row_cuts) cuts += row.size();
     if (cuts > 0) {
         out.cut_of.assign(n, 0);
         out.cuts.reserve(cuts);
-        for (size_t i = 0; i < n; ++i) {
-            if (!has_cut[i]) continue;
-            out.cuts.push_back(cut_of_pixel[i]);
-            out.cut_of[i] = static_cast<uint32_t>(out.cuts.size());
+        for (const auto& row : row_cuts) {
+            for (const auto& [i, c] : row) {
+                out.cuts.push_back(c);
+                out.cut_of[i] = static_cast<uint32_t>(out.cuts.size());
+            }
         }
     }
     return out;

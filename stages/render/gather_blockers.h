@@ -26,6 +26,10 @@ namespace sl {
 class GatherBlockers {
 public:
     static constexpr int kSectors = 4;
+    // Each blocker's line mirrored through the point, at least kMirrorMin R away: the disc is
+    // cut as much on the far side of the point as the blocker cuts it (tangent-plane offsets
+    // (x, y) with x mx + y my > d are left out), so what is kept is centred on the point.
+    static constexpr float kMirrorMin = 0.25f;
     // An edge's line (edge_radius.h): offsets x with dot(across, x) > offset lie past the edge.
     struct EdgeLine {
         Vec3 across;
@@ -73,10 +77,7 @@ private:
     float c_[kSectors];   // its plane: dot(m, x) = c, minus a small margin toward the far side
     uint32_t mask_ = 0;   // sectors with a blocker
     static constexpr uint32_t near_mask_[kSectors] = {0xb, 0x7, 0xe, 0xd};  // a sector and its two neighbours
-    // Each blocker's line mirrored through the point, at least kMirrorMin R away: the disc is
-    // cut as much on the far side of the point as the blocker cuts it (tangent-plane offsets
-    // (x, y) with x mx + y my > d are left out), so what is kept is centred on the point.
-    static constexpr float kMirrorMin = 0.25f;
+    // The mirror lines (kMirrorMin above): one per distinct blocker line, and the edge's.
     float mirror_x_[kSectors + 1], mirror_y_[kSectors + 1], mirror_d_[kSectors + 1];
     // The edge's line: tangent-plane offsets with x edge_x + y edge_y > edge_rho lie past it.
     bool edge_ = false;
