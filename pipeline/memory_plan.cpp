@@ -93,7 +93,7 @@ std::vector<std::pair<const char*, uint64_t>> MemoryBaseline::terms() const {
     return {{"program and libraries", program}, {"scene (meshes, BVH, textures, emitters)", scene},
             {"photon map (one pass)", photon_map}, {"volume photons (one pass)", volume_photons},
             {"frames on their way out", frames},  {"video encoder", encoder},
-            {"gather radii and edge cuts", gather_radii}};
+            {"gather radii, edge cuts and stars", gather_radii}};
 }
 
 MemoryBaseline memory_baseline(const SceneDesc& scene, const RunOptions& options) {
@@ -118,11 +118,13 @@ MemoryBaseline memory_baseline(const SceneDesc& scene, const RunOptions& options
     if (events_per_path > 0) b.volume_photons = VolumePhotonMap::bytes_needed(count(events_per_path));
 
     // The automatic radius stops short of edges pixel by pixel: a float a pixel, for the run,
-    // and where a pixel's disc is cut at an edge's line instead, an index a pixel and the cut
-    // (edge_radius.h). How many pixels lie beside an edge is known only once the map is made:
-    // a quarter of them is counted (the samples: 22 % in the cathedral, fewer in the boxes).
+    // and where a pixel's disc is cut at an edge's line or kept in a star instead, an index a
+    // pixel for each and the cut or star (edge_radius.h). How many pixels lie beside an edge is
+    // known only once the map is made: a quarter of them is counted, as stars, the larger (the
+    // samples: 20 % in the cathedral, fewer in the boxes).
     if (!(scene.render.radius > 0))
-        b.gather_radii = pixels * (sizeof(float) + sizeof(uint32_t)) + pixels / 4 * sizeof(EdgeCut);
+        b.gather_radii = pixels * (sizeof(float) + 2 * sizeof(uint32_t)) +
+                         pixels / 4 * std::max(sizeof(EdgeCut), sizeof(EdgeStar));
 
     // Frames on their way out, per pixel: the running sum of constant light (FrameAssembler,
     // doubles), the float frames alive at once (the two the pipeline's frames_alive limiter lets

@@ -16,8 +16,18 @@
 // theirs are. The line stands where the surface ends, found by bisection between the pixels'
 // rays for the edge pixels near the pixel: the surface goes on up to it, so nothing before it
 // is missing from the area. Edge pixels the line does not account for (a corner, a curved
-// silhouette) still cap the radius, at their distance as before, and the region a cut keeps is
-// checked along its border, ray by ray, before it is used.
+// silhouette) cap the radius, and the region a cut keeps is checked along its border, ray by
+// ray, before it is used.
+//
+// Where no line accounts for them (a corner, a column's narrow face, a curved silhouette), or
+// the cut leaves under 80 % of the disc, the pixel may keep a star instead: the disc in 16
+// equal sectors, each kept out to where the surface ends along the rays between sectors (found
+// ray by ray) and short of every edge pixel in it, and no farther than the opposite sector (a
+// cut's mirror, sector by sector). Its border is checked as a cut's is. The visible points on
+// the surface the pixel's centre sees gather round that centre, in the star: photons and area
+// alike.
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -39,6 +49,42 @@ struct EdgeCut {
     float shrunk = 1;
 };
 
+// A pixel's star, where no one line accounts for the edge pixels round it (a corner, a column's
+// face between two edges, a curved silhouette): the disc round `centre` (what the pixel's centre
+// sees) on the plane of `normal`, kept in each of kSectors equal sectors (angles in
+// make_basis(normal)'s frame) out to reach[k] * scale at most, where the surface may end. Every
+// visible point of the pixel on that surface gathers round the centre in that region, photons
+// and area alike; others gather in the shrunk disc (the radius times `shrunk`).
+struct EdgeStar {
+    static constexpr int kSectors = 16;
+    Vec3 centre;
+    OctNormal normal;
+    float scale = 0;  // reach[k] = 255 is scale * 255 (r0 or more)
+    float shrunk = 1;
+    uint8_t reach[kSectors] = {};
+
+    static int sector_of(float x, float y) {
+        const float a = std::atan2(y, x);  // [-pi, pi]
+        const int k = static_cast<int>((a + 3.14159265f) * (kSectors / (2 * 3.14159265f)));
+        return std::clamp(k, 0, kSectors - 1);
+    }
+    float reach_of(int k) const { return scale * reach[k]; }
+    // Whether tangent-plane offset (x, y) from the centre lies in the region, for radius R.
+    bool keeps(float x, float y, float R) const {
+        const float d2 = x * x + y * y, rk = std::min(R, reach_of(sector_of(x, y)));
+        return d2 < rk * rk;
+    }
+    // The region's area at radius R.
+    double area(double R) const {
+        double a = 0;
+        for (int k = 0; k < kSectors; ++k) {
+            const double rk = std::min(R, static_cast<double>(reach_of(k)));
+            a += rk * rk;
+        }
+        return a * 3.141592653589793 / kSectors;
+    }
+};
+
 struct GatherRadii {
     // Per pixel (row-major, width x height): the initial radius, min(r0, the distance to the
     // nearest edge pixel no cut accounts for), never below r0 / 64.
@@ -46,12 +92,20 @@ struct GatherRadii {
     // Per pixel: 1 + the index of its cut in `cuts`, 0 for none. Empty when no pixel has one.
     std::vector<uint32_t> cut_of;
     std::vector<EdgeCut> cuts;
+    // The same for stars (a pixel has a cut, a star or neither).
+    std::vector<uint32_t> star_of;
+    std::vector<EdgeStar> stars;
     const EdgeCut* cut(size_t pixel) const {
         if (cut_of.empty() || cut_of[pixel] == 0) return nullptr;
         return &cuts[cut_of[pixel] - 1];
     }
+    const EdgeStar* star(size_t pixel) const {
+        if (star_of.empty() || star_of[pixel] == 0) return nullptr;
+        return &stars[star_of[pixel] - 1];
+    }
     size_t bytes() const {
-        return radius.size() * sizeof(float) + cut_of.size() * sizeof(uint32_t) + cuts.size() * sizeof(EdgeCut);
+        return radius.size() * sizeof(float) + (cut_of.size() + star_of.size()) * sizeof(uint32_t) +
+               cuts.size() * sizeof(EdgeCut) + stars.size() * sizeof(EdgeStar);
     }
 };
 

@@ -66,8 +66,14 @@ float choose_initial_radius(const SceneDesc& desc, const SceneGeometry& geometry
     float diag = length(hi - lo);
     if (!(diag > 0)) return 0.01f;
     float dist = std::max(length((lo + hi) * 0.5f - camera.position()), 1e-6f * diag);
-    float r = 3.0f * camera.pixel_footprint(dist);
+    float r = 3.0f * pulse_radius_factor(desc) * camera.pixel_footprint(dist);
     return std::clamp(r, 1e-5f * diag, 0.05f * diag);
+}
+
+float pulse_radius_factor(const SceneDesc& desc) {
+    if (desc.emission.mode != EmissionMode::Pulse) return 1.0f;
+    const double slices = static_cast<double>(desc.time.frames) / std::max(desc.emission.width_frames, 1);
+    return static_cast<float>(std::clamp(std::pow(slices, 1.0 / 6.0), 1.0, 2.0));
 }
 
 float choose_volume_radius(const SceneDesc& desc, const HomogeneousMedium& medium, const PinholeCamera& camera) {

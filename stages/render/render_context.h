@@ -82,6 +82,10 @@ struct RenderContext {
     // line where one accounts for it (edge_radius.h); false: every point of such a pixel
     // gathers in the disc shrunk to the edge's distance, as before the cuts (tests compare).
     bool edge_cuts = true;
+    // true (the program): where no line does, or its cut leaves little, a pixel's points on the
+    // surface its centre sees gather in its star (edge_radius.h); false: they gather as if the
+    // pixel had no star (the shrunk disc), to compare (tests). Stars need edge_cuts too.
+    bool edge_stars = true;
     // Image positions (pixel units) of the point and spot lights inside the medium in front of
     // the camera: the pixels round them sample their rays towards them (camera_pass.cpp).
     std::vector<std::array<float, 2>> light_images;
@@ -100,6 +104,11 @@ private:
 // The initial gather radius: the scene's own, or about three pixel footprints at the middle of
 // the scene, capped at 5% of the scene's size.
 float choose_initial_radius(const SceneDesc& desc, const SceneGeometry& geometry, const PinholeCamera& camera);
+// How much wider a pulse's automatic surface radius starts than a steady light's. A pulse's frame
+// holds only the photons that arrive within it, about width_frames / frames of them; a density
+// estimate's best radius grows as its photon count falls, as N^(-1/6) on a surface, so the discs
+// start (frames / width_frames)^(1/6) wider, at most 2x (1 for constant emission; 31 frames: 1.77x).
+float pulse_radius_factor(const SceneDesc& desc);
 
 // The initial volume radius: the scene's own, or about three pixel footprints at the middle of
 // the medium (but at least a tenth of its size away), capped at 5% of the medium's size.

@@ -22,14 +22,34 @@ uint32_t gather_with(const RenderContext& ctx, const VisiblePoint& vp, const Pho
     constexpr float kSameSurface = 0.7f;
     const double inv_count = 1.0 / static_cast<double>(std::max<int64_t>(photons_emitted, 1));
     double& r2 = buffer.radius2[pixel];
-    const Vec3 n = vp.normal, p = vp.position;
+    const Vec3 n = vp.normal;
+    Vec3 p = vp.position;  // the disc's centre
     // Beside an edge of the surface the pixel's centre sees, the disc is cut at the edge's line
     // (edge_radius.h) when this point lies on that surface, before the line; else it gathers
     // in the disc shrunk to the edge's distance (the pixel's radius times the cut's `shrunk`).
-    const EdgeCut* cut = ctx.gather_radii().cut(buffer.share.global(pixel));
+    // A pixel has a cut, a star or neither.
+    const size_t global = buffer.share.global(pixel);
+    const EdgeCut* cut = ctx.gather_radii().cut(global);
     GatherBlockers::EdgeLine line{};
     bool use_cut = false;
     double gather_r2 = r2;
+    // Or by its star (edge_radius.h), for a point on the surface the pixel's centre sees: the
+    // disc round that centre, kept sector by sector where the surface is; a wall rising in it
+    // sends the point to the shrunk disc too (below).
+    const EdgeStar* star = ctx.gather_radii().star(global);
+    const float shrunk = star ? star->shrunk : 1.0f;
+    Vec3 star_t, star_b;
+    if (star) {
+        const Vec3 sn = decode_normal(star->normal);
+        const float slack = 0.1f * static_cast<float>(std::sqrt(r2));
+        if (ctx.edge_cuts && ctx.edge_stars && dot(sn, n) >= kSameSurface && std::abs(dot(sn, p - star->centre)) <= slack) {
+            p = star->centre;
+            make_basis(sn, star_t, star_b);
+        } else {
+            star = nullptr;
+            gather_r2 = r2 * static_cast<double>(shrunk) * shrunk;
+        }
+    }
     if (cut) {
         const Vec3 cn = decode_normal(cut->normal);
         line = {decode_normal(cut->across), cut->offset};
@@ -40,9 +60,18 @@ uint32_t gather_with(const RenderContext& ctx, const VisiblePoint& vp, const Pho
     }
     // The surfaces that cut the disc (a wall at a floor's edge): photons beyond them are not
     // gathered, and the disc's area is what is left of it (gather_blockers.h).
-    const GatherBlockers blockers(ctx.geometry, p, n, static_cast<float>(gather_r2), use_cut ? &line : nullptr);
-    // This pass's estimate: f * flux / (area * photons emitted this pass), area pi R^2 but for blockers.
-    const float k = static_cast<float>(inv_count / blockers.area());
+    GatherBlockers blockers(ctx.geometry, p, n, static_cast<float>(gather_r2), use_cut ? &line : nullptr);
+    if (star && blockers.any()) {
+        p = vp.position;
+        gather_r2 = r2 * static_cast<double>(shrunk) * shrunk;
+        star = nullptr;
+        blockers = GatherBlockers(ctx.geometry, p, n, static_cast<float>(gather_r2));
+    }
+    // This pass's estimate: f * flux / (area * photons emitted this pass), area pi R^2 but for
+    // blockers, or the star's.
+    const double area = star ? star->area(std::sqrt(r2)) : blockers.area();
+    const float k = static_cast<float>(inv_count / area);
+    const float star_r = static_cast<float>(std::sqrt(r2));
     auto add = adder(k);
     // Sides: a photon counts only on the side of its own surface the point is on, and only if it
     // is not below the point's surface (stacked sheets, a thin table over a floor). The slack
@@ -61,6 +90,7 @@ uint32_t gather_with(const RenderContext& ctx, const VisiblePoint& vp, const Pho
         const float behind = dot(v, pn);  // the point is behind the photon's surface
         if (behind > 0 && behind * behind > slack * slack * dot(pn, pn)) return;
         if (!blockers.visible(q)) return;
+        if (star && !star->keeps(dot(v, star_t), dot(v, star_b), star_r)) return;
         ++found;
         const int s = layout.slot_of_bucket(bucket(ph.t_ns + vp.camera_ns));
         if (s < 0) return;

@@ -116,8 +116,9 @@ TEST(EdgeRadius, CutDiscsMakeTheEdgeBandLessNoisyAndNoDarker) {
     // Beside an edge the shrunk disc holds a fraction of its neighbours' photons, and its
     // points past the pixel's edge still lose the part beyond it: the band is the noisiest part
     // of the plate, and a little dark. Cut at the edge's line, the disc keeps its size and
-    // nothing beyond the edge: the analytic light, from several times the photons. Measured
-    // (6 seeds): shrunk 0.957, spread 0.0248; cut 0.996, spread 0.0081.
+    // nothing beyond the edge: the analytic light, from several times the photons (the corners
+    // keep stars: the next test). Measured (6 seeds): shrunk 0.957, spread 0.0248; cut 1.000,
+    // spread 0.0050 (0.996 and 0.0081 before the corners' stars).
     constexpr int kSeeds = 6;
     const Band shrunk = edge_band(false, kSeeds), cut = edge_band(true, kSeeds);
     std::printf("edge band, %d seeds: shrunk discs mean %.4f spread %.4f; cut discs mean %.4f spread %.4f (%.2fx less)\n",
@@ -125,6 +126,73 @@ TEST(EdgeRadius, CutDiscsMakeTheEdgeBandLessNoisyAndNoDarker) {
     EXPECT_NEAR(cut.mean, 1.0, 0.015);
     EXPECT_LT(shrunk.mean, cut.mean);
     EXPECT_LT(cut.spread, 0.5 * shrunk.spread);
+}
+
+// The plate's four corners: the 3 x 3 pixels at each, over seeds, with stars or without (their
+// pixels then gather in the shrunk disc, the others as before).
+Band corner_band(bool stars, int seeds) {
+    const int xs[2] = {10, 27}, ys[2] = {10, 27};
+    std::vector<double> m(36, 0.0), m2(36, 0.0);
+    for (int seed = 1; seed <= seeds; ++seed) {
+        SceneDesc s = plate_in_a_beam();
+        s.render.seed = static_cast<uint64_t>(seed);
+        RenderContext ctx(s);
+        ctx.edge_stars = stars;
+        FramesInMemory sink;
+        render_frames(ctx, {Strategy::Single, 1}, sink);
+        int i = 0;
+        for (const int x0 : xs)
+            for (const int y0 : ys)
+                for (int y = y0; y < y0 + 3; ++y)
+                    for (int x = x0; x < x0 + 3; ++x, ++i) {
+                        const double v = sink.steady[(static_cast<size_t>(y) * kRes + x) * 3] / kWant;
+                        m[i] += v, m2[i] += v * v;
+                    }
+    }
+    Band b;
+    double var = 0;
+    for (size_t i = 0; i < m.size(); ++i) {
+        const double mean = m[i] / seeds;
+        b.mean += mean;
+        var += (m2[i] - seeds * mean * mean) / (seeds - 1);
+    }
+    b.mean /= static_cast<double>(m.size());
+    b.spread = std::sqrt(var / static_cast<double>(m.size()));
+    return b;
+}
+
+TEST(EdgeRadius, ThePlatesCornersKeepStarsOnThePlate) {
+    // At a corner no one line accounts for the two edges: the cut takes one, the other caps the
+    // radius. The corner's diagonal pixels keep a star instead: the disc, sector by sector, up
+    // to where the plate ends, found ray by ray.
+    const RenderContext ctx(plate_in_a_beam());
+    const GatherRadii& radii = ctx.gather_radii();
+    for (const int x0 : {10, 29})
+        for (const int y0 : {10, 29})
+            for (int k = 0; k < 3; ++k) {
+                const int x = x0 == 10 ? x0 + k : x0 - k, y = y0 == 10 ? y0 + k : y0 - k;
+                SCOPED_TRACE(::testing::Message() << "pixel " << x << ", " << y);
+                const EdgeStar* st = radii.star(static_cast<size_t>(y) * kRes + x);
+                ASSERT_NE(st, nullptr);
+                // Each sector's farthest points (its two rays and its middle) stay on the plate.
+                Vec3 t, b;
+                make_basis(decode_normal(st->normal), t, b);
+                for (int s = 0; s < EdgeStar::kSectors; ++s)
+                    for (const float a : {0.0f, 0.5f, 1.0f}) {
+                        const float ang = (s + a) * 2 * 3.14159265f / EdgeStar::kSectors - 3.14159265f;
+                        const Vec3 far = st->centre + (t * std::cos(ang) + b * std::sin(ang)) * st->reach_of(s);
+                        EXPECT_LT(std::max(std::abs(far.x), std::abs(far.z)), kHalf + 1e-4f) << "sector " << s;
+                    }
+            }
+    constexpr int kSeeds = 6;
+    const Band without = corner_band(false, kSeeds), with = corner_band(true, kSeeds);
+    std::printf("corners, %d seeds: without stars mean %.4f spread %.4f; with stars mean %.4f spread %.4f (%.2fx less)\n",
+                kSeeds, without.mean, without.spread, with.mean, with.spread, without.spread / with.spread);
+    // Measured (6 seeds): without 0.9836, spread 0.0154 (the shrunk discs still reach a little
+    // over the edges); with 0.9992, spread 0.0086.
+    EXPECT_NEAR(with.mean, 1.0, 0.015);
+    EXPECT_LT(without.mean, with.mean);
+    EXPECT_LT(with.spread, 0.75 * without.spread);
 }
 
 TEST(EdgeRadius, OneRadiusForEveryPixelLeavesTheEdgesDark) {
@@ -194,6 +262,29 @@ TEST(EdgeRadius, DiscsAreCutAtAnEdgeAndNotAtAWallOrAnOccluder) {
     // the floor, right beside the plate too.
     EXPECT_FLOAT_EQ(radius(free_side - inward, 20), r0);
     EXPECT_EQ(radii.cut(static_cast<size_t>(20) * kRes + free_side - inward), nullptr);
+}
+
+}  // namespace
+}  // namespace sl
+
+namespace sl {
+namespace {
+
+TEST(AutomaticRadius, APulseStartsWiderByItsFramesToTheSixth) {
+    // A pulse's frame holds only the photons that arrive in it: its discs start
+    // (frames / pulse frames)^(1/6) wider than constant light's, at most twice as wide.
+    SceneDesc s = plate_in_a_beam();
+    s.time = {0, 96, 48, 24};
+    const float steady = RenderContext(s).initial_radius;
+    s.emission.mode = EmissionMode::Pulse;
+    EXPECT_NEAR(RenderContext(s).initial_radius / steady, std::pow(48.0, 1.0 / 6), 1e-4);
+    s.emission.width_ns = 4, s.emission.width_frames = 2;
+    EXPECT_NEAR(RenderContext(s).initial_radius / steady, std::pow(24.0, 1.0 / 6), 1e-4);
+    s.time = {0, 8192, 4096, 24};
+    s.emission.width_ns = 0, s.emission.width_frames = 1;
+    EXPECT_NEAR(RenderContext(s).initial_radius / steady, 2.0, 1e-4);
+    s.render.radius = 0.05f;  // the scene's own radius is kept as it is
+    EXPECT_FLOAT_EQ(RenderContext(s).initial_radius, 0.05f);
 }
 
 }  // namespace
