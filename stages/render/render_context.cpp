@@ -6,6 +6,8 @@
 #include <stdexcept>
 
 #include "stages/render/edge_radius.h"
+#include "stages/render/photon_map.h"
+#include "stages/render/section_layout.h"
 
 namespace sl {
 
@@ -50,8 +52,27 @@ RenderContext::RenderContext(const SceneDesc& desc)
                 if (camera.project(l.position, px, py) && px > -2 && py > -2 && px < width + 2 && py < height + 2)
                     light_images.push_back({px, py});
             }
+            if (automatic_radius_) volume_radius = widened_for_sparse_photons(volume_radius, *medium);
         }
     }
+}
+
+float RenderContext::widened_for_sparse_photons(float r, const HomogeneousMedium& m) {
+    if (render.photons_per_pass <= 0) return r;
+    // The pilot: its own seed, so that every seed of a scene gets the same radius.
+    const uint64_t seed = render.seed;
+    render.seed = kPilotSeed;
+    PhotonMap map;
+    PhotonTraceCounters counters;
+    map.trace(*this, SectionLayout{}, /*pass=*/0, kVolumePilotPaths, counters, true);
+    render.seed = seed;
+    const double per_pass = static_cast<double>(counters.stored_volume.load()) / kVolumePilotPaths *
+                            static_cast<double>(render.photons_per_pass);
+    const Vec3 e = m.box_max() - m.box_min();
+    const double volume = static_cast<double>(e.x) * e.y * e.z, across = 0.5 * length(e);
+    if (!(per_pass > 0) || !(volume > 0) || !(across > 0)) return r;
+    const double wanted = std::sqrt(kBeamPhotons * volume / (per_pass * kPiDouble * across));
+    return std::max(r, std::min(static_cast<float>(wanted), std::min(4 * r, 0.05f * length(e))));
 }
 
 const GatherRadii& RenderContext::gather_radii() const {

@@ -96,6 +96,18 @@ struct RenderContext {
     bool has_ambient() const { return !is_black(render.ambient); }
 
 private:
+    // The beam estimate's automatic radius, widened where the volume photons are sparse: a beam
+    // query across the medium (half its diagonal long) should meet about kBeamPhotons of one
+    // pass's volume photons, spread evenly through its box, and the footprint rule alone leaves
+    // far fewer in a large, thin haze (the cathedral: about 14; a sun's photons mostly land
+    // outside). The count per pass comes from a pilot of kVolumePilotPaths paths with a seed of
+    // its own (every seed of a scene, every rank and section get the same radius); the radius
+    // grows at most 4x and stays under 5 % of the medium's size.
+    static constexpr double kBeamPhotons = 40;
+    static constexpr int64_t kVolumePilotPaths = 4 * 4096;
+    static constexpr uint64_t kPilotSeed = 0x5eed;
+    float widened_for_sparse_photons(float r, const HomogeneousMedium& m);
+
     bool automatic_radius_ = true;
     mutable std::once_flag radii_once_;
     mutable GatherRadii gather_radii_;
@@ -111,7 +123,8 @@ float choose_initial_radius(const SceneDesc& desc, const SceneGeometry& geometry
 float pulse_radius_factor(const SceneDesc& desc);
 
 // The initial volume radius: the scene's own, or about three pixel footprints at the middle of
-// the medium (but at least a tenth of its size away), capped at 5% of the medium's size.
+// the medium (but at least a tenth of its size away), capped at 5% of the medium's size; then
+// widened where the volume photons are sparse (RenderContext::widened_for_sparse_photons).
 float choose_volume_radius(const SceneDesc& desc, const HomogeneousMedium& medium, const PinholeCamera& camera);
 
 }  // namespace sl
