@@ -23,7 +23,7 @@ struct MemoryBaseline {
     uint64_t volume_photons = 0;  // one pass's medium events (VolumePhotonMap::bytes_needed)
     uint64_t frames = 0;          // frames on their way out: the running sum, float and 8-bit frames
     uint64_t encoder = 0;         // the codec: its library state, its own frames, our staged frames
-    uint64_t gather_radii = 0;    // each pixel's initial radius, edge cut or star, with the automatic radius (edge_radius.h)
+    uint64_t gather_radii = 0;    // each pixel's initial radius, cut or star (automatic radius; edge_radius.h)
     // What the photon terms were computed from: stored records and medium events per photon
     // path, counted on a fixed-seed pilot of the scene's own lights (PhotonMap::trace).
     double records_per_path = 0, volume_events_per_path = 0;

@@ -344,7 +344,8 @@ GatherRadii edge_aware_radii(const SceneGeometry& geometry, const PinholeCamera&
                 auto near_off = [&](float s) {
                     float fx, fy;
                     if (!camera.project(p.position + u * s, fx, fy)) return true;
-                    const int x0 = static_cast<int>(std::floor(fx - 0.5f)), y0 = static_cast<int>(std::floor(fy - 0.5f));
+                    const int x0 = static_cast<int>(std::floor(fx - 0.5f));
+                    const int y0 = static_cast<int>(std::floor(fy - 0.5f));
                     if (x0 < 0 || y0 < 0 || x0 + 1 >= width || y0 + 1 >= height) return ends_at(p, fx, fy);
                     for (int qy = y0; qy <= y0 + 1; ++qy)
                         for (int qx = x0; qx <= x0 + 1; ++qx)

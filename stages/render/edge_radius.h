@@ -87,7 +87,7 @@ struct EdgeStar {
 
 struct GatherRadii {
     // Per pixel (row-major, width x height): the initial radius, min(r0, the distance to the
-    // nearest edge pixel no cut accounts for), never below r0 / 64.
+    // nearest edge pixel no cut accounts for), never below r0 / 64; r0 for a star's pixel.
     std::vector<float> radius;
     // Per pixel: 1 + the index of its cut in `cuts`, 0 for none. Empty when no pixel has one.
     std::vector<uint32_t> cut_of;

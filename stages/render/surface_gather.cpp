@@ -42,7 +42,8 @@ uint32_t gather_with(const RenderContext& ctx, const VisiblePoint& vp, const Pho
     if (star) {
         const Vec3 sn = decode_normal(star->normal);
         const float slack = 0.1f * static_cast<float>(std::sqrt(r2));
-        if (ctx.edge_cuts && ctx.edge_stars && dot(sn, n) >= kSameSurface && std::abs(dot(sn, p - star->centre)) <= slack) {
+        if (ctx.edge_cuts && ctx.edge_stars && dot(sn, n) >= kSameSurface &&
+            std::abs(dot(sn, p - star->centre)) <= slack) {
             p = star->centre;
             make_basis(sn, star_t, star_b);
         } else {

@@ -25,9 +25,11 @@ TEST(BeamRadius, SparseVolumePhotonsWidenTheAutomaticRadiusAndDenseOnesKeepIt) {
     const float rule = choose_volume_radius(hazy_box(1000000), *dense.medium, dense.camera);
     EXPECT_FLOAT_EQ(dense.volume_radius, rule);
     // Few paths a pass: wider, at most 4x.
-    const float r10k = RenderContext(hazy_box(10000)).volume_radius, r20k = RenderContext(hazy_box(20000)).volume_radius;
+    const float r10k = RenderContext(hazy_box(10000)).volume_radius;
+    const float r20k = RenderContext(hazy_box(20000)).volume_radius;
     const float r100 = RenderContext(hazy_box(100)).volume_radius;
-    std::printf("footprint rule %.4f m; widened: 20000 paths %.4f, 10000 paths %.4f, 100 paths %.4f\n", rule, r20k, r10k, r100);
+    std::printf("footprint rule %.4f m; widened: 20000 paths %.4f, 10000 paths %.4f, 100 paths %.4f\n", rule, r20k,
+                r10k, r100);
     EXPECT_GT(r20k, 1.2f * rule);
     EXPECT_LT(r10k, 3.9f * rule);
     EXPECT_FLOAT_EQ(r100, 4 * rule);
