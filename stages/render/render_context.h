@@ -99,7 +99,7 @@ private:
     // The beam estimate's automatic radius, widened where the volume photons are sparse: a beam
     // query across the medium (half its diagonal long) should meet about kBeamPhotons of one
     // pass's volume photons, spread evenly through its box, and the footprint rule alone leaves
-    // far fewer in a large, thin haze (the cathedral: about 14; a sun's photons mostly land
+    // far fewer in a large, thin haze (the cathedral: about 12; a sun's photons mostly land
     // outside). The count per pass comes from a pilot of kVolumePilotPaths paths with a seed of
     // its own (every seed of a scene, every rank and section get the same radius); the radius
     // grows at most 4x and stays under 5 % of the medium's size.
