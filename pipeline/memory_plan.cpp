@@ -69,15 +69,9 @@ const Codec* codec_for(const std::string& output) {
 // count (batches have their own random streams: the thread count does not matter either).
 constexpr int64_t kPilotPhotons = 4 * PhotonMap::kBatch;
 
-std::pair<double, double> pilot_yield(const SceneDesc& scene) {
-    if (scene.render.photons_per_pass <= 0) return {0, 0};
-    RenderContext ctx(scene);
-    PhotonMap map;
-    PhotonTraceCounters counters;
-    const SectionLayout full;  // every path to its end
-    map.trace(ctx, full, /*pass=*/0, kPilotPhotons, counters, ctx.medium.has_value());
-    return {static_cast<double>(counters.stored.load()) / kPilotPhotons,
-            static_cast<double>(counters.stored_volume.load()) / kPilotPhotons};
+PilotYield scene_pilot_yield(const SceneDesc& scene) {
+    if (scene.render.photons_per_pass <= 0) return {};
+    return pilot_yield(RenderContext(scene), kPilotPhotons);
 }
 
 }  // namespace
@@ -109,7 +103,7 @@ MemoryBaseline memory_baseline(const SceneDesc& scene, const RunOptions& options
 
     // One pass's photons: the pilot's records per path, 2% more for the pilot's own spread
     // (about 1% for 4096 paths), times this run's photons per pass.
-    const auto [records_per_path, events_per_path] = pilot_yield(scene);
+    const auto [records_per_path, events_per_path] = scene_pilot_yield(scene);
     b.records_per_path = records_per_path;
     b.volume_events_per_path = events_per_path;
     const double photons = static_cast<double>(std::max<int64_t>(scene.render.photons_per_pass, 0));

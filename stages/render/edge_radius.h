@@ -34,6 +34,7 @@
 #include "core/camera.h"
 #include "core/oct_normal.h"
 #include "core/scene_geometry.h"
+#include "foundation/constants.h"
 
 namespace sl {
 
@@ -65,7 +66,7 @@ struct EdgeStar {
 
     static int sector_of(float x, float y) {
         const float a = std::atan2(y, x);  // [-pi, pi]
-        const int k = static_cast<int>((a + 3.14159265f) * (kSectors / (2 * 3.14159265f)));
+        const int k = static_cast<int>((a + kPi) * (kSectors / (2 * kPi)));
         return std::clamp(k, 0, kSectors - 1);
     }
     float reach_of(int k) const { return scale * reach[k]; }
@@ -81,7 +82,7 @@ struct EdgeStar {
             const double rk = std::min(R, static_cast<double>(reach_of(k)));
             a += rk * rk;
         }
-        return a * 3.141592653589793 / kSectors;
+        return a * kPiDouble / kSectors;
     }
 };
 

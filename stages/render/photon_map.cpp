@@ -491,4 +491,12 @@ void PhotonMap::sort_into_grid(size_t total, RankExchange* ex) {
     grid_size_ = total;
 }
 
+PilotYield pilot_yield(const RenderContext& ctx, int64_t paths) {
+    PhotonMap map;
+    PhotonTraceCounters counters;
+    map.trace(ctx, SectionLayout{}, /*pass=*/0, paths, counters, ctx.medium.has_value());
+    const double n = static_cast<double>(std::max<int64_t>(paths, 1));
+    return {static_cast<double>(counters.stored.load()) / n, static_cast<double>(counters.stored_volume.load()) / n};
+}
+
 }  // namespace sl

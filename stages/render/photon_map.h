@@ -191,4 +191,13 @@ void PhotonMap::for_each_near(float px, float py, float pz, float r2, F&& f) con
         }
 }
 
+// Stored surface records and volume photons per photon path, from a pilot of `paths` full paths
+// of the context's lights (pass 0, every path to its end, volume photons when there is a
+// medium): the memory plan's photon terms and the beam estimate's automatic radius
+// (render_context.cpp) are both made from it.
+struct PilotYield {
+    double records_per_path = 0, volume_per_path = 0;
+};
+PilotYield pilot_yield(const RenderContext& ctx, int64_t paths);
+
 }  // namespace sl

@@ -7,7 +7,6 @@
 
 #include "stages/render/edge_radius.h"
 #include "stages/render/photon_map.h"
-#include "stages/render/section_layout.h"
 
 namespace sl {
 
@@ -62,12 +61,9 @@ float RenderContext::widened_for_sparse_photons(float r, const HomogeneousMedium
     // The pilot: its own seed, so that every seed of a scene gets the same radius.
     const uint64_t seed = render.seed;
     render.seed = kPilotSeed;
-    PhotonMap map;
-    PhotonTraceCounters counters;
-    map.trace(*this, SectionLayout{}, /*pass=*/0, kVolumePilotPaths, counters, true);
-    render.seed = seed;
-    const double per_pass = static_cast<double>(counters.stored_volume.load()) / kVolumePilotPaths *
+    const double per_pass = pilot_yield(*this, kVolumePilotPaths).volume_per_path *
                             static_cast<double>(render.photons_per_pass);
+    render.seed = seed;
     const Vec3 e = m.box_max() - m.box_min();
     const double volume = static_cast<double>(e.x) * e.y * e.z, across = 0.5 * length(e);
     if (!(per_pass > 0) || !(volume > 0) || !(across > 0)) return r;
