@@ -71,6 +71,13 @@ LightSet::LightSet(const SceneDesc& scene, Vec3 bounds_min, Vec3 bounds_max) : e
     for (float& c : cdf_) c = total_power_ > 0 ? c / total_power_ : 0;
 }
 
+std::vector<size_t> LightSet::suns() const {
+    std::vector<size_t> out;
+    for (size_t i = 0; i < lights_.size(); ++i)
+        if (!lights_[i].mesh && lights_[i].desc.type == LightType::Sun) out.push_back(i);
+    return out;
+}
+
 const LightSet::Light& LightSet::pick(float u, float& probability) const {
     size_t i = static_cast<size_t>(std::upper_bound(cdf_.begin(), cdf_.end(), u) - cdf_.begin());
     i = std::min(i, lights_.size() - 1);
@@ -125,7 +132,7 @@ EmittedPhoton LightSet::emit(Rng& rng) const {
         break;
     case LightType::Sun: {
         float u3 = rng.uniform(), u4 = rng.uniform();
-        l.sun.emit(u1, u2, u3, u4, e.origin, e.direction, e.start_ns);
+        e.flux *= l.sun.emit(u1, u2, u3, u4, e.origin, e.direction, e.start_ns);
         break;
     }
     }

@@ -110,6 +110,11 @@ public:
     size_t count() const { return lights_.size(); }
 
     EmittedPhoton emit(Rng& rng) const;
+    // The suns among the lights (their indices), and where light i's photons go (a sun's:
+    // sun_aim.h; an empty table draws its rectangle uniformly).
+    std::vector<size_t> suns() const;
+    const SunLight& sun(size_t i) const { return lights_[i].sun; }
+    void aim_sun(size_t i, SunAim aim) { lights_[i].sun.aim(std::move(aim)); }
     // One sample of light i's direct irradiance at p (unit normal n facing the viewer); false
     // when light i cannot reach p this way (back side, outside a spot's cone, a laser,
     // a sun below the horizon).

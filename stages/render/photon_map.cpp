@@ -41,10 +41,11 @@ struct PhotonPath {
                        static_cast<uint32_t>(depth), 0, t});
     }
 
-    void trace(Rng& rng) {
+    void trace(Rng& rng) { trace_from(ctx.lights.emit(rng), rng); }
+
+    void trace_from(const EmittedPhoton& e, Rng& rng) {
         const RenderDesc& settings = ctx.render;
         const int max_depth = settings.max_depth;
-        EmittedPhoton e = ctx.lights.emit(rng);
         Vec3 o = e.origin, d = e.direction, flux = e.flux;
         double t = e.start_ns;
         bool inside = false;
@@ -489,6 +490,13 @@ void PhotonMap::sort_into_grid(size_t total, RankExchange* ex) {
     grid_ = grid;
     cells_ = cells;
     grid_size_ = total;
+}
+
+void trace_photon_path(const RenderContext& ctx, const EmittedPhoton& e, Rng& rng, std::vector<PhotonRecord>& records,
+                       std::vector<VolumePhoton>* volume) {
+    const SectionLayout whole{};
+    PhotonPath path{ctx, whole, records, ctx.medium ? &*ctx.medium : nullptr, ctx.medium ? volume : nullptr};
+    path.trace_from(e, rng);
 }
 
 PilotYield pilot_yield(const RenderContext& ctx, int64_t paths) {

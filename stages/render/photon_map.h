@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/oct_normal.h"
+#include "core/rng.h"
 #include "stages/render/render_context.h"
 #include "stages/render/section_layout.h"
 #include "stages/render/volume_photon_map.h"
@@ -199,5 +200,10 @@ struct PilotYield {
     double records_per_path = 0, volume_per_path = 0;
 };
 PilotYield pilot_yield(const RenderContext& ctx, int64_t paths);
+
+// One photon path from a given start, its records and (with a medium) volume photons appended
+// as a pass stores them: for pilots that choose where the photons start (sun_aim_pilot.h).
+void trace_photon_path(const RenderContext& ctx, const EmittedPhoton& e, Rng& rng, std::vector<PhotonRecord>& records,
+                       std::vector<VolumePhoton>* volume);
 
 }  // namespace sl

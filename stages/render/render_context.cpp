@@ -7,6 +7,7 @@
 
 #include "stages/render/edge_radius.h"
 #include "stages/render/photon_map.h"
+#include "stages/render/sun_aim_pilot.h"
 
 namespace sl {
 
@@ -51,9 +52,11 @@ RenderContext::RenderContext(const SceneDesc& desc)
                 if (camera.project(l.position, px, py) && px > -2 && py > -2 && px < width + 2 && py < height + 2)
                     light_images.push_back({px, py});
             }
-            if (automatic_radius_) volume_radius = widened_for_sparse_photons(volume_radius, *medium);
         }
     }
+    // Before the beam radius's pilot, which counts the volume photons of aimed suns.
+    if (aim_sun_photons) aim_suns(*this);
+    if (medium && automatic_radius_) volume_radius = widened_for_sparse_photons(volume_radius, *medium);
 }
 
 float RenderContext::widened_for_sparse_photons(float r, const HomogeneousMedium& m) {

@@ -2,6 +2,7 @@
 // Runs one whole-timeline convergence in-process (the program's own render, its frames kept in
 // memory) and returns its frames and steady image.
 #include <cmath>
+#include <functional>
 #include <vector>
 
 #include "core/import/resolve_imports.h"
@@ -24,6 +25,21 @@ inline Rendered render_all(const SceneDesc& scene, int sections = 1) {
     out.height = ctx.height;
     FramesInMemory sink;
     render_frames(ctx, {Strategy::Single, sections}, sink);
+    out.frames = std::move(sink.frames);
+    out.steady = std::move(sink.steady);
+    return out;
+}
+
+// The same, with `set` turning the render context's internal switches first (tests that compare
+// an estimator with the one before it).
+inline Rendered render_switched(const SceneDesc& scene, const std::function<void(RenderContext&)>& set) {
+    RenderContext ctx(with_imports(scene));
+    set(ctx);
+    Rendered out;
+    out.width = ctx.width;
+    out.height = ctx.height;
+    FramesInMemory sink;
+    render_frames(ctx, {Strategy::Single, 1}, sink);
     out.frames = std::move(sink.frames);
     out.steady = std::move(sink.steady);
     return out;

@@ -20,24 +20,10 @@
 namespace sl {
 namespace {
 
-// The renderer's frames, with `set` turning the render context's internal switches first.
-test::Rendered render_switched(const SceneDesc& scene, const std::function<void(RenderContext&)>& set) {
-    RenderContext ctx(with_imports(scene));
-    set(ctx);
-    test::Rendered out;
-    out.width = ctx.width;
-    out.height = ctx.height;
-    FramesInMemory sink;
-    render_frames(ctx, {Strategy::Single, 1}, sink);
-    out.frames = std::move(sink.frames);
-    out.steady = std::move(sink.steady);
-    return out;
-}
-
 // With the switch that puts single scattering back on the volume photons (the estimator before
 // next-event estimation).
 test::Rendered render_mode(const SceneDesc& scene, bool by_photons) {
-    return render_switched(scene, [by_photons](RenderContext& ctx) { ctx.single_scatter_by_photons = by_photons; });
+    return test::render_switched(scene, [by_photons](RenderContext& ctx) { ctx.single_scatter_by_photons = by_photons; });
 }
 
 // The case at test size: a 300 W point light about 4 m from a camera inside an open fog
@@ -335,7 +321,7 @@ TEST(SingleScatter, FlashingQuadLightEveryFrameInItsBucket) {
         for (uint64_t seed = 1; seed <= 3; ++seed) {
             s.render.seed = seed;
             const test::Rendered r =
-                render_switched(s, [by_area](RenderContext& ctx) { ctx.pulse_quads_by_area = by_area == 1; });
+                test::render_switched(s, [by_area](RenderContext& ctx) { ctx.pulse_quads_by_area = by_area == 1; });
             const FrameErrors e = compare(r, want, 0.05);
             std::printf("flashing quad, %s, seed %d: ", by_area ? "area point" : "solid angle", int(seed));
             print("", e);
@@ -514,7 +500,7 @@ TEST(SingleScatter, AShaftConvergesFasterWithSamplesStratifiedOverPasses) {
     for (int stratified = 0; stratified < 2; ++stratified)
         for (uint64_t seed = 1; seed <= 3; ++seed) {
             w.scene.render.seed = seed;
-            const test::Rendered r = render_switched(
+            const test::Rendered r = test::render_switched(
                 w.scene, [stratified](RenderContext& ctx) { ctx.stratified_light_points = stratified == 1; });
             const FrameErrors e = compare(r, w.want, 0.05);
             std::printf("shaft, %s, seed %d: ", stratified ? "stratified" : "independent", int(seed));

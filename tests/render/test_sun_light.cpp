@@ -61,44 +61,11 @@ TEST(SunLight, PhotonFluxThroughAWindowIsIrradianceTimesProjectedArea) {
     EXPECT_LT(worst_dt, 2e-3);  // a tilt of 0.27 degrees adds ~1e-5 of the path at most
 }
 
-// A closed box x, z in [0, 4], y in [0, 3], with a 1 m x 1 m hole in the ceiling; a camera
-// under the ceiling looks straight down at the floor. Direct light only (max_depth 1).
-SceneDesc box_with_a_window(Vec3 sun_dir, Vec3 E, float rho) {
-    SceneDesc s;
-    s.source = "<test sun box>";
-    s.camera.position = {2, 2.95f, 2};
-    s.camera.look_at = {2, 0, 2};
-    s.camera.up = {0, 0, -1};
-    s.camera.vfov_deg = 70;
-    s.camera.width = s.camera.height = 72;
-    MaterialDesc floor, wall;
-    floor.name = "floor"; floor.albedo = Vec3(rho);
-    wall.name = "wall"; wall.albedo = Vec3(0.5f);
-    s.materials = {floor, wall};
-    using test::quad;
-    s.shapes = {quad({0, 0, 4}, {4, 0, 0}, {0, 0, -4}, 0),        // floor, facing up
-                quad({0, 0, 0}, {4, 0, 0}, {0, 3, 0}, 1),         // walls
-                quad({0, 0, 4}, {4, 0, 0}, {0, 3, 0}, 1),
-                quad({0, 0, 0}, {0, 0, 4}, {0, 3, 0}, 1),
-                quad({4, 0, 0}, {0, 0, 4}, {0, 3, 0}, 1),
-                // the ceiling around the window x, z in [1.5, 2.5]
-                quad({0, 3, 0}, {4, 0, 0}, {0, 0, 1.5f}, 1),
-                quad({0, 3, 2.5f}, {4, 0, 0}, {0, 0, 1.5f}, 1),
-                quad({0, 3, 1.5f}, {1.5f, 0, 0}, {0, 0, 1}, 1),
-                quad({2.5f, 3, 1.5f}, {1.5f, 0, 0}, {0, 0, 1}, 1)};
-    s.lights.push_back(make_sun_light(sun_dir, 0.53f, E));
-    s.time = {0, 24, 96, 24};  // 0.25 ns (7.5 cm of light) a frame
-    s.render.max_depth = 1;
-    s.render.passes = 8;
-    s.render.photons_per_pass = 2000;
-    return s;
-}
-
 TEST(SunLight, LightsTheFloorPatchThroughAWindowWhenThePlaneWavefrontArrives) {
     const Vec3 d = normalize(Vec3{0.3f, -1, 0.2f});
     const Vec3 E{800, 700, 500};
     const float rho = 0.6f;
-    SceneDesc s = box_with_a_window(d, E, rho);
+    SceneDesc s = test::box_with_a_window(d, E, rho);
     test::Rendered r = test::render_all(s);
     const double h0 = entry_plane(d, {0, 0, 0}, {4, 3, 4});
 
