@@ -71,13 +71,6 @@ LightSet::LightSet(const SceneDesc& scene, Vec3 bounds_min, Vec3 bounds_max) : e
     for (float& c : cdf_) c = total_power_ > 0 ? c / total_power_ : 0;
 }
 
-std::vector<size_t> LightSet::suns() const {
-    std::vector<size_t> out;
-    for (size_t i = 0; i < lights_.size(); ++i)
-        if (!lights_[i].mesh && lights_[i].desc.type == LightType::Sun) out.push_back(i);
-    return out;
-}
-
 const LightSet::Light& LightSet::pick(float u, float& probability) const {
     size_t i = static_cast<size_t>(std::upper_bound(cdf_.begin(), cdf_.end(), u) - cdf_.begin());
     i = std::min(i, lights_.size() - 1);
@@ -89,11 +82,38 @@ const LightSet::Light& LightSet::pick(float u, float& probability) const {
 EmittedPhoton LightSet::emit(Rng& rng) const {
     float p = 1;
     const Light& l = pick(rng.uniform(), p);
-    float u1 = rng.uniform(), u2 = rng.uniform();
+    return emit_light(l, p, rng, nullptr);
+}
+
+EmittedPhoton LightSet::emit_from(size_t i, float a1, float a2, Rng& rng) const {
+    const float pair[2] = {a1, a2};
+    return emit_light(lights_[i], 1.0f, rng, pair);
+}
+
+bool LightSet::aimable(size_t i) const {
+    const Light& l = lights_[i];
+    return !l.mesh && l.desc.type != LightType::Laser;
+}
+
+// One photon of light l, chosen with probability p. Its aimed pair of uniforms (aimable()) is
+// `pair` when given (unaimed), else two of rng's mapped through the light's aim, whose factor
+// then scales the flux. The pair is drawn where the light drew those two before it had an aim,
+// so an empty aim leaves every photon as it was.
+EmittedPhoton LightSet::emit_light(const Light& l, float p, Rng& rng, const float* pair) const {
+    auto aimed = [&](float& a1, float& a2) {
+        if (pair) {
+            a1 = pair[0];
+            a2 = pair[1];
+            return 1.0f;
+        }
+        const float u1 = rng.uniform(), u2 = rng.uniform();
+        return l.aim.draw(u1, u2, a1, a2);
+    };
     EmittedPhoton e;
     e.flux = l.power / p;
     e.direct_by_photons = false;
     if (l.mesh) {
+        const float u1 = rng.uniform(), u2 = rng.uniform();
         const EmitterPoint ep = emitters_.sample(u1, u2);
         Vec3 n = ep.normal;
         float sides = 1;
@@ -107,16 +127,20 @@ EmittedPhoton LightSet::emit(Rng& rng) const {
         e.direction = sample_cosine_hemisphere(n, rng.uniform(), rng.uniform());
         return e;
     }
+    float a1 = 0, a2 = 0;
     switch (l.desc.type) {
     case LightType::Point:
+        e.flux *= aimed(a1, a2);
         e.origin = l.desc.position;
-        e.direction = sample_uniform_sphere(u1, u2);
+        e.direction = sample_uniform_sphere(a1, a2);
         break;
     case LightType::Spot:
+        e.flux *= aimed(a1, a2);
         e.origin = l.desc.position;
-        e.direction = sample_uniform_cone(l.desc.direction, l.cos_cone, u1, u2);
+        e.direction = sample_uniform_cone(l.desc.direction, l.cos_cone, a1, a2);
         break;
     case LightType::Laser: {
+        const float u1 = rng.uniform(), u2 = rng.uniform();
         float x, y;
         sample_disk(u1, u2, x, y);
         Vec3 t, b;
@@ -126,13 +150,17 @@ EmittedPhoton LightSet::emit(Rng& rng) const {
         e.direct_by_photons = true;
         break;
     }
-    case LightType::Quad:
+    case LightType::Quad: {
+        const float u1 = rng.uniform(), u2 = rng.uniform();
         e.origin = l.desc.corner + l.desc.edge1 * u1 + l.desc.edge2 * u2;
-        e.direction = sample_cosine_hemisphere(l.normal, rng.uniform(), rng.uniform());
+        e.flux *= aimed(a1, a2);
+        e.direction = sample_cosine_hemisphere(l.normal, a1, a2);
         break;
+    }
     case LightType::Sun: {
-        float u3 = rng.uniform(), u4 = rng.uniform();
-        e.flux *= l.sun.emit(u1, u2, u3, u4, e.origin, e.direction, e.start_ns);
+        e.flux *= aimed(a1, a2);
+        const float u3 = rng.uniform(), u4 = rng.uniform();
+        l.sun.emit(a1, a2, u3, u4, e.origin, e.direction, e.start_ns);
         break;
     }
     }

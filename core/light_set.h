@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "config/scene_desc.h"
+#include "core/emission_aim.h"
 #include "core/emissive_triangles.h"
 #include "core/rng.h"
 #include "core/spherical_rectangle.h"
@@ -110,11 +111,16 @@ public:
     size_t count() const { return lights_.size(); }
 
     EmittedPhoton emit(Rng& rng) const;
-    // The suns among the lights (their indices), and where light i's photons go (a sun's:
-    // sun_aim.h; an empty table draws its rectangle uniformly).
-    std::vector<size_t> suns() const;
-    const SunLight& sun(size_t i) const { return lights_[i].sun; }
-    void aim_sun(size_t i, SunAim aim) { lights_[i].sun.aim(std::move(aim)); }
+    // Where light i's photons go (emission_aim.h): a sun's aim is over where on its rectangle
+    // they start, a point, spot or quad light's over which way they leave (the two uniforms
+    // its direction is drawn from); lasers and emissive meshes are not aimed. An empty table
+    // (the default) draws them as they are.
+    bool aimable(size_t i) const;
+    void aim(size_t i, EmissionAim aim) { lights_[i].aim = std::move(aim); }
+    const EmissionAim& aim_of(size_t i) const { return lights_[i].aim; }
+    // A photon of light i alone (its power, as if it were the only light) with its aimed pair of
+    // uniforms given and not aimed: for the pilot that makes the aim.
+    EmittedPhoton emit_from(size_t i, float a1, float a2, Rng& rng) const;
     // One sample of light i's direct irradiance at p (unit normal n facing the viewer); false
     // when light i cannot reach p this way (back side, outside a spot's cone, a laser,
     // a sun below the horizon).
@@ -153,7 +159,9 @@ private:
         Vec3 power;         // RGB power in W
         bool mesh = false;  // the emissive triangles of imported meshes (emitters_)
         SunLight sun;       // sun
+        EmissionAim aim;    // where its photons go (empty: uniformly)
     };
+    EmittedPhoton emit_light(const Light& l, float p, Rng& rng, const float* pair) const;
     const Light& pick(float u, float& probability) const;
 
     std::vector<Light> lights_;

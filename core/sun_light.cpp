@@ -48,15 +48,12 @@ Vec3 SunLight::sample_direction(float u1, float u2) const {
     return normalize(t_ * x + b_ * y + d_ * z);
 }
 
-float SunLight::emit(float u1, float u2, float u3, float u4, Vec3& origin, Vec3& dir, double& start_ns) const {
-    float x, y;
-    const float factor = aim_.draw(u1, u2, x, y);
-    const float u = u0_ + du_ * x, v = v0_ + dv_ * y;
+void SunLight::emit(float u1, float u2, float u3, float u4, Vec3& origin, Vec3& dir, double& start_ns) const {
+    const float u = u0_ + du_ * u1, v = v0_ + dv_ * u2;
     origin = t_ * u + b_ * v + d_ * static_cast<float>(h0_ - lead_);
     dir = sample_direction(u3, u4);
     // The wavefront (perpendicular to d) is at dot(x, d) = h0 at t = 0: lead before it, earlier.
     start_ns = -static_cast<double>(lead_) / (dot(dir, d_) * kSpeedOfLight);
-    return factor;
 }
 
 bool SunLight::sample_direct(Vec3 p, Vec3 n, float u1, float u2, Vec3& irradiance, Vec3& to_light, float& distance,

@@ -12,10 +12,8 @@
 // dot(corner, d). The rectangle sits a little before that plane (so that a surface lying in the
 // plane is still hit), and its light leaves it at a matching negative time.
 #include <cmath>
-#include <utility>
 
 #include "config/sun_desc.h"
-#include "core/sun_aim.h"
 
 namespace sl {
 
@@ -29,13 +27,9 @@ public:
     Vec3 direction() const { return d_; }
     double entry_offset() const { return h0_; }          // dot(x, d) where the wavefront is at t = 0
 
-    // A photon: origin on the rectangle (drawn by the aim, if any), direction in the cone, and
-    // the time (ns, <= 0) at which it leaves the origin. Four uniforms. Returns the factor on
-    // the photon's flux (1 without an aim).
-    float emit(float u1, float u2, float u3, float u4, Vec3& origin, Vec3& dir, double& start_ns) const;
-    // Where the photons go: an empty table (the default) draws the rectangle uniformly.
-    void aim(SunAim a) { aim_ = std::move(a); }
-    const SunAim& aim() const { return aim_; }
+    // A photon: origin on the rectangle (u1, u2), direction in the cone, and the time (ns, <= 0)
+    // at which it leaves the origin. Four uniforms.
+    void emit(float u1, float u2, float u3, float u4, Vec3& origin, Vec3& dir, double& start_ns) const;
 
     // One sample of the direct irradiance at p (unit normal n facing the viewer): the
     // irradiance estimate E cos(n, -w) / cos(d, w), the unit direction towards the sun, the
@@ -61,7 +55,6 @@ private:
     float lead_ = 0;            // the rectangle sits at dot(x, d) = h0 - lead
     float u0_ = 0, v0_ = 0, du_ = 0, dv_ = 0;  // the rectangle: t in [u0, u0+du], b in [v0, v0+dv]
     float area_ = 0;
-    SunAim aim_;
 };
 
 }  // namespace sl

@@ -202,7 +202,7 @@ struct PilotYield {
 PilotYield pilot_yield(const RenderContext& ctx, int64_t paths);
 
 // One photon path from a given start, its records and (with a medium) volume photons appended
-// as a pass stores them: for pilots that choose where the photons start (sun_aim_pilot.h).
+// as a pass stores them: for pilots that choose where the photons start (emission_aim_pilot.h).
 void trace_photon_path(const RenderContext& ctx, const EmittedPhoton& e, Rng& rng, std::vector<PhotonRecord>& records,
                        std::vector<VolumePhoton>* volume);
 

@@ -7,7 +7,7 @@
 
 #include "stages/render/edge_radius.h"
 #include "stages/render/photon_map.h"
-#include "stages/render/sun_aim_pilot.h"
+#include "stages/render/emission_aim_pilot.h"
 
 namespace sl {
 
@@ -54,8 +54,8 @@ RenderContext::RenderContext(const SceneDesc& desc)
             }
         }
     }
-    // Before the beam radius's pilot, which counts the volume photons of aimed suns.
-    if (aim_sun_photons) aim_suns(*this);
+    // Before the beam radius's pilot, which counts the volume photons of aimed lights.
+    if (aim_photons) aim_lights(*this);
     if (medium && automatic_radius_) volume_radius = widened_for_sparse_photons(volume_radius, *medium);
 }
 

@@ -86,9 +86,10 @@ struct RenderContext {
     // surface its centre sees gather in its star (edge_radius.h); false: they gather as if the
     // pixel had no star (the shrunk disc), to compare (tests). Stars need edge_cuts too.
     bool edge_stars = true;
-    // true (the program): a sun's photons are aimed where the camera sees (sun_aim_pilot.h),
-    // by a pilot run in the constructor; tests that compare clear the aim (LightSet::aim_sun).
-    static constexpr bool aim_sun_photons = true;
+    // true (the program): the lights' photons are aimed where the camera sees, where that pays
+    // (emission_aim_pilot.h), by a pilot run in the constructor; tests that compare clear the
+    // aim (LightSet::aim).
+    static constexpr bool aim_photons = true;
     // Image positions (pixel units) of the point and spot lights inside the medium in front of
     // the camera: the pixels round them sample their rays towards them (camera_pass.cpp).
     std::vector<std::array<float, 2>> light_images;

@@ -1,4 +1,4 @@
-#include "stages/render/sun_aim_pilot.h"
+#include "stages/render/emission_aim_pilot.h"
 
 #include <tbb/parallel_for.h>
 
@@ -129,9 +129,7 @@ SeenCells seen_by_camera(const RenderContext& ctx) {
 }
 
 std::vector<double> usefulness(const RenderContext& ctx, size_t light, const SeenCells& seen) {
-    SunLight unaimed = ctx.lights.sun(light);
-    unaimed.aim(SunAim{});
-    const int n = kSunAimCells;
+    const int n = kAimCells;
     std::vector<double> out(static_cast<size_t>(n) * n, 0.0);
     tbb::parallel_for(0, n * n, [&](int c) {
         const int i = c % n, j = c / n;
@@ -139,38 +137,57 @@ std::vector<double> usefulness(const RenderContext& ctx, size_t light, const See
         std::vector<PhotonRecord> records;
         std::vector<VolumePhoton> volume;
         double sum = 0;
-        for (int k = 0; k < kSunAimPathsPerCell; ++k) {
-            const float u1 = (static_cast<float>(i) + rng.uniform()) / n, u2 = (static_cast<float>(j) + rng.uniform()) / n;
-            const float u3 = rng.uniform(), u4 = rng.uniform();
-            EmittedPhoton e;
-            e.flux = Vec3(1.0f);
-            e.direct_by_photons = false;
-            unaimed.emit(u1, u2, u3, u4, e.origin, e.direction, e.start_ns);
+        for (int k = 0; k < kAimPathsPerCell; ++k) {
+            const float a1 = (static_cast<float>(i) + rng.uniform()) / n, a2 = (static_cast<float>(j) + rng.uniform()) / n;
+            const EmittedPhoton e = ctx.lights.emit_from(light, a1, a2, rng);
+            const double start = average(e.flux);
+            if (!(start > 0)) continue;
             records.clear();
             volume.clear();
             trace_photon_path(ctx, e, rng, records, &volume);
             for (const PhotonRecord& r : records)
                 if (seen.seen(Vec3(r.x, r.y, r.z), SeenCells::side_of(decode_normal(r.normal))))
-                    sum += average(Vec3(r.r, r.g, r.b));
+                    sum += average(Vec3(r.r, r.g, r.b)) / start;
             for (const VolumePhoton& v : volume)
-                if (seen.seen(Vec3(v.x, v.y, v.z), kVolumeBit)) sum += average(Vec3(v.r, v.g, v.b));
+                if (seen.seen(Vec3(v.x, v.y, v.z), kVolumeBit)) sum += average(Vec3(v.r, v.g, v.b)) / start;
         }
-        out[static_cast<size_t>(c)] = sum / kSunAimPathsPerCell;
+        out[static_cast<size_t>(c)] = sum / kAimPathsPerCell;
     });
     return out;
 }
 
 }  // namespace
 
-std::vector<double> sun_usefulness(const RenderContext& ctx, size_t light) {
+std::vector<double> light_usefulness(const RenderContext& ctx, size_t light) {
     return usefulness(ctx, light, seen_by_camera(ctx));
 }
 
-void aim_suns(RenderContext& ctx) {
-    const std::vector<size_t> suns = ctx.lights.suns();
-    if (suns.empty() || ctx.width <= 0 || ctx.height <= 0) return;
+double aim_gain(const std::vector<double>& u, double floor) {
+    // The share of draws in a cell, weighed by how useful the cell is: aimed (the table's
+    // probabilities) over uniform (1 / cells each).
+    double total = 0;
+    for (double v : u) total += v > 0 ? v : 0;
+    if (!(total > 0) || u.empty()) return 1;
+    const double cells = static_cast<double>(u.size());
+    double aimed = 0;
+    for (double v : u) {
+        const double w = v > 0 ? v : 0;
+        aimed += ((1 - floor) * w / total + floor / cells) * w;
+    }
+    return aimed / (total / cells);
+}
+
+void aim_lights(RenderContext& ctx) {
+    if (ctx.width <= 0 || ctx.height <= 0) return;
+    std::vector<size_t> lights;
+    for (size_t i = 0; i < ctx.lights.count(); ++i)
+        if (ctx.lights.aimable(i)) lights.push_back(i);
+    if (lights.empty()) return;
     const SeenCells seen = seen_by_camera(ctx);
-    for (size_t i : suns) ctx.lights.aim_sun(i, SunAim(kSunAimCells, usefulness(ctx, i, seen), kSunAimFloor));
+    for (size_t i : lights) {
+        const std::vector<double> u = usefulness(ctx, i, seen);
+        if (aim_gain(u, kAimFloor) >= kAimMinGain) ctx.lights.aim(i, EmissionAim(kAimCells, u, kAimFloor));
+    }
 }
 
 }  // namespace sl

@@ -1,11 +1,11 @@
-#include "core/sun_aim.h"
+#include "core/emission_aim.h"
 
 #include <algorithm>
 #include <cmath>
 
 namespace sl {
 
-SunAim::SunAim(int n, const std::vector<double>& usefulness, double floor) {
+EmissionAim::EmissionAim(int n, const std::vector<double>& usefulness, double floor) {
     if (n <= 0 || usefulness.size() != static_cast<size_t>(n) * n) return;
     double total = 0;
     for (double u : usefulness) total += std::isfinite(u) && u > 0 ? u : 0;
@@ -49,7 +49,7 @@ int invert(const float* cdf, int n, float u, float& within, float& width) {
 }
 }  // namespace
 
-float SunAim::draw(float u1, float u2, float& x, float& y) const {
+float EmissionAim::draw(float u1, float u2, float& x, float& y) const {
     if (n_ == 0) {
         x = u1;
         y = u2;

@@ -1,8 +1,9 @@
-// Aiming a sun's photons where the camera sees (core/sun_aim.h, stages/render/sun_aim_pilot.h):
-// the table draws each cell with its probability and weighs the photon back by it; in a closed
-// room lit through a window in its ceiling the aimed photons cross the window far more often and
-// carry exactly the sun's flux through it (E |d.y| x its area, as unaimed photons do); and the
-// rendered room is the same, with less noise.
+// Aiming the lights' photons where the camera sees (core/emission_aim.h,
+// stages/render/emission_aim_pilot.h): the table draws each cell with its probability and weighs
+// the photon back by it; in a closed room lit through a window in its ceiling, by the sun or by
+// a lamp above the window, the aimed photons cross the window far more often and carry exactly
+// the light's flux through it, as unaimed photons do; a lamp inside the room is left as it
+// was; and the rendered room is the same, with less noise.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,21 +11,21 @@
 
 #include "core/light_set.h"
 #include "core/rng.h"
-#include "core/sun_aim.h"
+#include "core/emission_aim.h"
 #include "render_helpers.h"
 #include "scenes_for_tests.h"
-#include "stages/render/sun_aim_pilot.h"
+#include "stages/render/emission_aim_pilot.h"
 
 namespace sl {
 namespace {
 
-TEST(SunAim, DrawsEachCellByItsProbabilityAndWeighsItBack) {
+TEST(EmissionAim, DrawsEachCellByItsProbabilityAndWeighsItBack) {
     const int n = 8;
     std::vector<double> useful(static_cast<size_t>(n) * n, 0.0);
     useful[3] = 1;
     useful[2 * n + 5] = 10;
     useful[7 * n + 7] = 0.5;
-    const SunAim aim(n, useful, 0.2);
+    const EmissionAim aim(n, useful, 0.2);
     ASSERT_FALSE(aim.empty());
     Rng rng(11, 0);
     const int draws = 400000;
@@ -54,7 +55,7 @@ TEST(SunAim, DrawsEachCellByItsProbabilityAndWeighsItBack) {
     EXPECT_NEAR(aim.probability(0, 0), 0.2 / 64, 1e-9);
 
     // Nothing useful: no table, the rectangle drawn as it is.
-    const SunAim none(n, std::vector<double>(useful.size(), 0.0), 0.2);
+    const EmissionAim none(n, std::vector<double>(useful.size(), 0.0), 0.2);
     EXPECT_TRUE(none.empty());
     float x, y;
     EXPECT_EQ(none.draw(0.25f, 0.75f, x, y), 1.0f);
@@ -91,15 +92,15 @@ Through through_the_window(const LightSet& lights, int n) {
     return t;
 }
 
-TEST(SunAim, AimedPhotonsCrossTheWindowAndCarryItsFlux) {
+TEST(EmissionAim, AimedSunPhotonsCrossTheWindowAndCarryItsFlux) {
     RenderContext ctx(room(3));
-    ASSERT_EQ(ctx.lights.suns().size(), 1u);
-    ASSERT_FALSE(ctx.lights.sun(0).aim().empty()) << "the pilot found photons the camera sees";
+    ASSERT_EQ(ctx.lights.count(), 1u);
+    ASSERT_FALSE(ctx.lights.aim_of(0).empty()) << "the pilot found photons the camera sees";
     const Vec3 d = normalize(Vec3{0.3f, -1, 0.2f});
     const double want = average(Vec3{800, 700, 500}) * -d.y * 1.0;  // E |d.y| x 1 m^2
     const int n = 200000;
     const Through aimed = through_the_window(ctx.lights, n);
-    ctx.lights.aim_sun(0, SunAim{});
+    ctx.lights.aim(0, EmissionAim{});
     const Through plain = through_the_window(ctx.lights, n);
     std::printf("through the window: aimed %.4f of the photons, %.2f W; unaimed %.4f, %.2f W; want %.2f W\n",
                 aimed.fraction, aimed.flux, plain.fraction, plain.flux, want);
@@ -111,15 +112,15 @@ TEST(SunAim, AimedPhotonsCrossTheWindowAndCarryItsFlux) {
 }
 
 // Without bounces no photon is stored (direct light is the camera pass's), so nothing is aimed.
-TEST(SunAim, NothingToAimWhenThePhotonsStoreNothing) {
+TEST(EmissionAim, NothingToAimWhenThePhotonsStoreNothing) {
     const RenderContext ctx(room(1));
-    EXPECT_TRUE(ctx.lights.sun(0).aim().empty());
+    EXPECT_TRUE(ctx.lights.aim_of(0).empty());
 }
 
 // Rendered, aimed or not: the same room, with less noise from seed to seed (4 seeds each) where
 // the floor is lit only by light off the walls (the photons'; the sun's patch, direct light, is
 // left out: its border pixels' noise is the pixel's own area sampled pass by pass).
-TEST(SunAim, TheRoomIsTheSameAimedAndLessNoisy) {
+TEST(EmissionAim, TheRoomIsTheSameAimedAndLessNoisy) {
     SceneDesc s = room(3);
     s.render.passes = 16;
     s.render.photons_per_pass = 20000;
@@ -129,7 +130,7 @@ TEST(SunAim, TheRoomIsTheSameAimedAndLessNoisy) {
         for (int seed = 1; seed <= 4; ++seed) {
             s.render.seed = static_cast<uint64_t>(seed);
             img[seed - 1] = test::render_switched(s, [aimed](RenderContext& ctx) {
-                                if (!aimed) ctx.lights.aim_sun(0, SunAim{});
+                                if (!aimed) ctx.lights.aim(0, EmissionAim{});
                             }).steady;
         }
         double sum = 0, diff2 = 0;
@@ -151,6 +152,61 @@ TEST(SunAim, TheRoomIsTheSameAimedAndLessNoisy) {
                 mean[0], mean[1] / mean[0], noise[1], noise[0]);
     EXPECT_NEAR(mean[1] / mean[0], 1.0, 0.02);
     EXPECT_LT(noise[1], 0.55 * noise[0]);
+}
+
+
+// A 20 cm square lamp 2 m above the window, facing down: most of its photons land on the roof.
+// Aimed, its photons cross the window far more often, with the same flux through it; the
+// flux through the window is also computed independently, by quadrature over the lamp and the
+// window (L cos cos / d^2).
+TEST(EmissionAim, AimedLampPhotonsCrossTheWindowAndCarryItsFlux) {
+    SceneDesc s = room(3);
+    s.lights.clear();
+    LightDesc lamp;
+    lamp.type = LightType::Quad;
+    lamp.corner = {1.9f, 5, 1.9f};
+    lamp.edge1 = {0.2f, 0, 0};  // edge1 x edge2 faces down
+    lamp.edge2 = {0, 0, 0.2f};
+    lamp.radiance = Vec3(1000);
+    s.lights.push_back(lamp);
+    RenderContext ctx(s);
+    ASSERT_FALSE(ctx.lights.aim_of(0).empty());
+    // Quadrature: 8 x 8 points on the lamp, 64 x 64 on the window, both facing each other.
+    double want = 0;
+    for (int a = 0; a < 64; ++a)
+        for (int b = 0; b < 64 * 64; ++b) {
+            const Vec3 x{1.9f + 0.2f * (static_cast<float>(a % 8) + 0.5f) / 8, 5, 1.9f + 0.2f * (static_cast<float>(a / 8) + 0.5f) / 8};
+            const Vec3 y{1.5f + (static_cast<float>(b % 64) + 0.5f) / 64, 3, 1.5f + (static_cast<float>(b / 64) + 0.5f) / 64};
+            const Vec3 v = y - x;
+            const double d2 = dot(v, v), c = 2.0 / std::sqrt(d2);  // both cosines: the drop of 2 m over the distance
+            want += 1000.0 * c * c / d2 * (0.04 / 64) * (1.0 / 4096);
+        }
+    const int n = 200000;
+    const Through aimed = through_the_window(ctx.lights, n);
+    ctx.lights.aim(0, EmissionAim{});
+    const Through plain = through_the_window(ctx.lights, n);
+    std::printf("lamp through the window: aimed %.4f of the photons, %.3f W; unaimed %.4f, %.3f W; quadrature %.3f W\n",
+                aimed.fraction, aimed.flux, plain.fraction, plain.flux, want);
+    EXPECT_NEAR(plain.flux, want, 4 * plain.rel_error * want);
+    EXPECT_NEAR(aimed.flux, want, 8 * aimed.rel_error * want);
+    EXPECT_GT(aimed.fraction, 3 * plain.fraction);
+}
+
+// A lamp inside the room it lights, under the ceiling: nearly every direction lands where the
+// camera sees, aiming would gain nothing, and its photons stay exactly as they were.
+TEST(EmissionAim, ALampInsideTheRoomIsLeftAsItWas) {
+    SceneDesc s = room(3);
+    s.lights.clear();
+    LightDesc lamp;
+    lamp.type = LightType::Point;
+    lamp.position = {1, 2, 1};
+    lamp.power = Vec3(100);
+    s.lights.push_back(lamp);
+    const RenderContext ctx(s);
+    const std::vector<double> u = light_usefulness(ctx, 0);
+    std::printf("lamp inside: gain %.3f\n", aim_gain(u, kAimFloor));
+    EXPECT_LT(aim_gain(u, kAimFloor), kAimMinGain);
+    EXPECT_TRUE(ctx.lights.aim_of(0).empty());
 }
 
 }  // namespace
