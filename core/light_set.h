@@ -116,6 +116,7 @@ public:
     // its direction is drawn from); lasers and emissive meshes are not aimed. An empty table
     // (the default) draws them as they are.
     bool aimable(size_t i) const;
+    float power_of(size_t i) const { return average(lights_[i].power); }  // W, the channels' mean
     void aim(size_t i, EmissionAim aim) { lights_[i].aim = std::move(aim); }
     const EmissionAim& aim_of(size_t i) const { return lights_[i].aim; }
     // A photon of light i alone (its power, as if it were the only light) with its aimed pair of

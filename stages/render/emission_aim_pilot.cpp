@@ -181,8 +181,12 @@ void aim_lights(RenderContext& ctx) {
     if (ctx.width <= 0 || ctx.height <= 0) return;
     std::vector<size_t> lights;
     for (size_t i = 0; i < ctx.lights.count(); ++i)
-        if (ctx.lights.aimable(i)) lights.push_back(i);
+        if (ctx.lights.aimable(i) && ctx.lights.power_of(i) > 0) lights.push_back(i);
     if (lights.empty()) return;
+    // The most powerful first (ties by index: every process picks the same).
+    std::stable_sort(lights.begin(), lights.end(),
+                     [&](size_t a, size_t b) { return ctx.lights.power_of(a) > ctx.lights.power_of(b); });
+    if (lights.size() > kAimMostLights) lights.resize(kAimMostLights);
     const SeenCells seen = seen_by_camera(ctx);
     for (size_t i : lights) {
         const std::vector<double> u = usefulness(ctx, i, seen);

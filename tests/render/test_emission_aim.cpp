@@ -5,6 +5,7 @@
 // the light's flux through it, as unaimed photons do; a lamp inside the room is left as it
 // was; and the rendered room is the same, with less noise.
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include <cmath>
 #include <cstdio>
@@ -207,6 +208,43 @@ TEST(EmissionAim, ALampInsideTheRoomIsLeftAsItWas) {
     std::printf("lamp inside: gain %.3f\n", aim_gain(u, kAimFloor));
     EXPECT_LT(aim_gain(u, kAimFloor), kAimMinGain);
     EXPECT_TRUE(ctx.lights.aim_of(0).empty());
+}
+
+
+// Many lamps above the window: only the kAimMostLights most powerful are tried (the pilot's cost
+// stays bounded), and they are aimed.
+TEST(EmissionAim, OnlyTheMostPowerfulLightsAreTried) {
+    SceneDesc s = room(3);
+    s.lights.clear();
+    for (int k = 0; k < 10; ++k) {
+        LightDesc lamp;
+        lamp.type = LightType::Point;
+        lamp.position = {1.6f + 0.08f * static_cast<float>(k), 5, 2};
+        lamp.power = Vec3(10.0f + static_cast<float>(k));  // the last ones the most powerful
+        s.lights.push_back(lamp);
+    }
+    const RenderContext ctx(s);
+    size_t aimed = 0;
+    for (size_t i = 0; i < ctx.lights.count(); ++i) {
+        aimed += !ctx.lights.aim_of(i).empty();
+        if (i + kAimMostLights < ctx.lights.count()) EXPECT_TRUE(ctx.lights.aim_of(i).empty()) << "lamp " << i;
+    }
+    EXPECT_EQ(aimed, kAimMostLights);
+}
+
+
+// The pilot has a seed of its own and each cell its own random stream: the same figures for any
+// seed of the render and any number of threads (ranks, sections and resume build it alike).
+TEST(EmissionAim, ThePilotIsTheSameForAnySeedAndThreadCount) {
+    SceneDesc s = room(3);
+    const std::vector<double> u = light_usefulness(RenderContext(s), 0);
+    s.render.seed = 99;
+    std::vector<double> one;
+    {
+        tbb::global_control only(tbb::global_control::max_allowed_parallelism, 1);
+        one = light_usefulness(RenderContext(s), 0);
+    }
+    EXPECT_EQ(u, one);
 }
 
 }  // namespace
