@@ -72,6 +72,13 @@ SceneDesc room(int max_depth) {
     return s;
 }
 
+// The same room lit by one lamp instead of the sun.
+SceneDesc room_lit_by(const LightDesc& lamp) {
+    SceneDesc s = room(3);
+    s.lights = {lamp};
+    return s;
+}
+
 struct Through {
     double fraction = 0, flux = 0, rel_error = 0;
 };
@@ -93,23 +100,29 @@ Through through_the_window(const LightSet& lights, int n) {
     return t;
 }
 
+// Light 0's photons through the window, aimed (as the context has it) and then unaimed: both
+// carry `want` W through it, and aimed at least `gain` times as many of them cross it.
+void expect_more_photons_with_the_same_flux(RenderContext& ctx, double want, double gain, const char* what) {
+    const int n = 200000;
+    const Through aimed = through_the_window(ctx.lights, n);
+    ctx.lights.aim(0, EmissionAim{});
+    const Through plain = through_the_window(ctx.lights, n);
+    std::printf("%s through the window: aimed %.4f of the photons, %.3f W; unaimed %.4f, %.3f W; want %.3f W\n", what,
+                aimed.fraction, aimed.flux, plain.fraction, plain.flux, want);
+    EXPECT_NEAR(plain.flux, want, 4 * plain.rel_error * want);
+    // An aimed photon's flux varies with its cell (the cells at the window's border are drawn
+    // less often than its middle): a looser bound than the count's alone.
+    EXPECT_NEAR(aimed.flux, want, 8 * aimed.rel_error * want);
+    EXPECT_GT(aimed.fraction, gain * plain.fraction) << "aimed photons mostly cross the window";
+}
+
 TEST(EmissionAim, AimedSunPhotonsCrossTheWindowAndCarryItsFlux) {
     RenderContext ctx(room(3));
     ASSERT_EQ(ctx.lights.count(), 1u);
     ASSERT_FALSE(ctx.lights.aim_of(0).empty()) << "the pilot found photons the camera sees";
     const Vec3 d = normalize(Vec3{0.3f, -1, 0.2f});
     const double want = average(Vec3{800, 700, 500}) * -d.y * 1.0;  // E |d.y| x 1 m^2
-    const int n = 200000;
-    const Through aimed = through_the_window(ctx.lights, n);
-    ctx.lights.aim(0, EmissionAim{});
-    const Through plain = through_the_window(ctx.lights, n);
-    std::printf("through the window: aimed %.4f of the photons, %.2f W; unaimed %.4f, %.2f W; want %.2f W\n",
-                aimed.fraction, aimed.flux, plain.fraction, plain.flux, want);
-    EXPECT_NEAR(plain.flux, want, 4 * plain.rel_error * want);
-    // An aimed photon's flux varies with its cell (the cells at the window's border are drawn
-    // less often than its middle): a looser bound than the count's alone.
-    EXPECT_NEAR(aimed.flux, want, 8 * aimed.rel_error * want);
-    EXPECT_GT(aimed.fraction, 5 * plain.fraction) << "aimed photons mostly cross the window";
+    expect_more_photons_with_the_same_flux(ctx, want, 5, "sun");
 }
 
 // Without bounces no photon is stored (direct light is the camera pass's), so nothing is aimed.
@@ -155,55 +168,41 @@ TEST(EmissionAim, TheRoomIsTheSameAimedAndLessNoisy) {
     EXPECT_LT(noise[1], 0.55 * noise[0]);
 }
 
-
 // A 20 cm square lamp 2 m above the window, facing down: most of its photons land on the roof.
 // Aimed, its photons cross the window far more often, with the same flux through it; the
 // flux through the window is also computed independently, by quadrature over the lamp and the
 // window (L cos cos / d^2).
 TEST(EmissionAim, AimedLampPhotonsCrossTheWindowAndCarryItsFlux) {
-    SceneDesc s = room(3);
-    s.lights.clear();
     LightDesc lamp;
     lamp.type = LightType::Quad;
     lamp.corner = {1.9f, 5, 1.9f};
     lamp.edge1 = {0.2f, 0, 0};  // edge1 x edge2 faces down
     lamp.edge2 = {0, 0, 0.2f};
     lamp.radiance = Vec3(1000);
-    s.lights.push_back(lamp);
-    RenderContext ctx(s);
+    RenderContext ctx(room_lit_by(lamp));
     ASSERT_FALSE(ctx.lights.aim_of(0).empty());
     // Quadrature: 8 x 8 points on the lamp, 64 x 64 on the window, both facing each other.
     double want = 0;
     for (int a = 0; a < 64; ++a)
         for (int b = 0; b < 64 * 64; ++b) {
-            const Vec3 x{1.9f + 0.2f * (static_cast<float>(a % 8) + 0.5f) / 8, 5, 1.9f + 0.2f * (static_cast<float>(a / 8) + 0.5f) / 8};
-            const Vec3 y{1.5f + (static_cast<float>(b % 64) + 0.5f) / 64, 3, 1.5f + (static_cast<float>(b / 64) + 0.5f) / 64};
+            const float ax = (static_cast<float>(a % 8) + 0.5f) / 8, az = (static_cast<float>(a / 8) + 0.5f) / 8;
+            const float bx = (static_cast<float>(b % 64) + 0.5f) / 64, bz = (static_cast<float>(b / 64) + 0.5f) / 64;
+            const Vec3 x{1.9f + 0.2f * ax, 5, 1.9f + 0.2f * az}, y{1.5f + bx, 3, 1.5f + bz};
             const Vec3 v = y - x;
             const double d2 = dot(v, v), c = 2.0 / std::sqrt(d2);  // both cosines: the drop of 2 m over the distance
             want += 1000.0 * c * c / d2 * (0.04 / 64) * (1.0 / 4096);
         }
-    const int n = 200000;
-    const Through aimed = through_the_window(ctx.lights, n);
-    ctx.lights.aim(0, EmissionAim{});
-    const Through plain = through_the_window(ctx.lights, n);
-    std::printf("lamp through the window: aimed %.4f of the photons, %.3f W; unaimed %.4f, %.3f W; quadrature %.3f W\n",
-                aimed.fraction, aimed.flux, plain.fraction, plain.flux, want);
-    EXPECT_NEAR(plain.flux, want, 4 * plain.rel_error * want);
-    EXPECT_NEAR(aimed.flux, want, 8 * aimed.rel_error * want);
-    EXPECT_GT(aimed.fraction, 3 * plain.fraction);
+    expect_more_photons_with_the_same_flux(ctx, want, 3, "lamp");
 }
 
 // A lamp inside the room it lights, under the ceiling: nearly every direction lands where the
 // camera sees, aiming would gain nothing, and its photons stay exactly as they were.
 TEST(EmissionAim, ALampInsideTheRoomIsLeftAsItWas) {
-    SceneDesc s = room(3);
-    s.lights.clear();
     LightDesc lamp;
     lamp.type = LightType::Point;
     lamp.position = {1, 2, 1};
     lamp.power = Vec3(100);
-    s.lights.push_back(lamp);
-    const RenderContext ctx(s);
+    const RenderContext ctx(room_lit_by(lamp));
     const std::vector<double> u = light_usefulness(ctx, 0);
     std::printf("lamp inside: gain %.3f\n", aim_gain(u, kAimFloor));
     EXPECT_LT(aim_gain(u, kAimFloor), kAimMinGain);
