@@ -196,7 +196,7 @@ TEST(EmissionAim, AimedLampPhotonsCrossTheWindowAndCarryItsFlux) {
 }
 
 // A lamp inside the room it lights, under the ceiling: nearly every direction lands where the
-// camera sees, aiming would gain nothing, and its photons stay exactly as they were.
+// camera sees, aiming would gain nothing, and its photons stay as they were.
 TEST(EmissionAim, ALampInsideTheRoomIsLeftAsItWas) {
     LightDesc lamp;
     lamp.type = LightType::Point;
