@@ -15,7 +15,7 @@ namespace sl {
 class EmissionAim {
 public:
     EmissionAim() = default;
-    // `usefulness`: n x n values (row-major, row = the rectangle's second coordinate), >= 0;
+    // `usefulness`: n x n values (row-major: the row is the second uniform's cell), >= 0;
     // `floor`: the share of the draws spread evenly over all cells (0 < floor <= 1). All zero:
     // an empty table.
     EmissionAim(int n, const std::vector<double>& usefulness, double floor);

@@ -97,8 +97,9 @@ bool LightSet::aimable(size_t i) const {
 
 // One photon of light l, chosen with probability p. Its aimed pair of uniforms (aimable()) is
 // `pair` when given (unaimed), else two of rng's mapped through the light's aim, whose factor
-// then scales the flux. The pair is drawn where the light drew those two before it had an aim,
-// so an empty aim leaves every photon as it was.
+// then scales the flux. The pair is drawn where the light drew those two before it had an aim
+// (the first of the two first: a quad left their order to the compiler), so an empty aim leaves
+// every photon as an unaimed light draws it.
 EmittedPhoton LightSet::emit_light(const Light& l, float p, Rng& rng, const float* pair) const {
     auto aimed = [&](float& a1, float& a2) {
         if (pair) {
