@@ -17,7 +17,7 @@
 //     over all of them: no light is ever left out, and a photon from a cell the pilot found
 //     useless carries at most 1 / kAimFloor of its unaimed flux. A light is aimed only where
 //     that at least doubles the share of its photons that land where the camera sees
-//     (kAimMinGain): a lamp inside the room it lights, or a sun over an open landscape, keeps
+//     (kAimMinGain): a lamp inside the room it lights, or a room's ceiling light, keeps
 //     its photons as they were. With many lights only the kAimMostLights most powerful
 //     are tried, so that the pilot's cost stays bounded (a glTF scene may bring dozens).
 #include <cstddef>
