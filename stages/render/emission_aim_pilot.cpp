@@ -112,8 +112,12 @@ SeenCells seen_by_camera(const RenderContext& ctx) {
                 SurfaceHit hit;
                 const bool found = ctx.geometry.intersect(o, d, 1e-7f, 1e30f, hit);
                 float t0, t1;
-                if (ctx.medium && !inside && ctx.medium->clip(o, d, 0, found ? hit.t : 1e30f, t0, t1))
-                    for (float s = t0; s <= t1; s += 0.5f * seen.cell()) seen.mark(o + d * s, kVolumeBit);
+                if (ctx.medium && !inside && ctx.medium->clip(o, d, 0, found ? hit.t : 1e30f, t0, t1)) {
+                    // Counted steps, not s += step: far from the origin a float step may add nothing.
+                    const double step = 0.5 * seen.cell(), span = static_cast<double>(t1) - t0;
+                    const int64_t steps = span > 0 ? std::min<int64_t>(static_cast<int64_t>(span / step), 4 * kCellsAcross) : 0;
+                    for (int64_t k = 0; k <= steps; ++k) seen.mark(o + d * static_cast<float>(t0 + k * step), kVolumeBit);
+                }
                 if (!found || hit.light >= 0) break;
                 const SurfaceMaterial& m = ctx.materials[hit.material];
                 if (m.type == MaterialType::Diffuse || m.glossy != GlossyUse::None) {

@@ -246,5 +246,19 @@ TEST(EmissionAim, ThePilotIsTheSameForAnySeedAndThreadCount) {
     EXPECT_EQ(u, one);
 }
 
+
+// The room and its haze seen from 3000 km away (a float step along the camera's ray would add
+// nothing there): the pilot ends, and aims the sun as it does from inside.
+TEST(EmissionAim, ThePilotEndsForACameraFarAway) {
+    SceneDesc s = room(3);
+    s.medium.present = true;
+    s.medium.sigma_s = Vec3(0.05f);
+    s.medium.sigma_a = Vec3(0.01f);
+    s.camera.position = {2, 3e6f, 2};
+    s.camera.vfov_deg = 0.0001f;
+    const RenderContext ctx(s);
+    EXPECT_EQ(light_usefulness(ctx, 0).size(), static_cast<size_t>(kAimCells) * kAimCells);
+}
+
 }  // namespace
 }  // namespace sl
