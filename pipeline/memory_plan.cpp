@@ -113,11 +113,12 @@ MemoryBaseline memory_baseline(const SceneDesc& scene, const RunOptions& options
 
     // The automatic radius stops short of edges pixel by pixel: a float a pixel, for the run,
     // and where a pixel's disc is cut at an edge's line or kept in a star instead, an index a
-    // pixel for each and the cut or star (edge_radius.h). How many pixels lie beside an edge is
+    // pixel for each and the cut or star (edge_radius.h), and the plane each pixel's centre sees
+    // (a neighbour's disc for points across a silhouette). How many pixels lie beside an edge is
     // known only once the map is made: a quarter of them is counted, as stars, the larger (the
     // samples: 20 % in the cathedral, fewer in the boxes).
     if (!(scene.render.radius > 0))
-        b.gather_radii = pixels * (sizeof(float) + 2 * sizeof(uint32_t)) +
+        b.gather_radii = pixels * (sizeof(float) + 2 * sizeof(uint32_t) + sizeof(GatherRadii::SeenPlane)) +
                          pixels / 4 * std::max(sizeof(EdgeCut), sizeof(EdgeStar));
 
     // Frames on their way out, per pixel: the running sum of constant light (FrameAssembler,

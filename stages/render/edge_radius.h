@@ -29,6 +29,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "core/camera.h"
@@ -96,6 +97,34 @@ struct GatherRadii {
     // The same for stars (a pixel has a cut, a star or neither).
     std::vector<uint32_t> star_of;
     std::vector<EdgeStar> stars;
+    // Per pixel, when any pixel has a cut or a star: the plane its centre sees (offset NaN: none).
+    // A point of a cut's or a star's pixel off that pixel's surface (its other side of a
+    // silhouette) gathers as the neighbour whose centre sees its plane does: the surface behind
+    // a column goes on behind it, so that neighbour's disc, not one shrunk to the column's edge,
+    // is the one that fits (a shrunk disc there held a photon or none: a firefly or a hole).
+    struct SeenPlane {
+        OctNormal normal;
+        float offset = std::numeric_limits<float>::quiet_NaN();
+    };
+    std::vector<SeenPlane> plane;
+    // The neighbour (8 around `pixel`, the nearer four first) whose centre sees the plane that
+    // point x with normal n lies on (normals within ~45 degrees, x within `slack` of the plane),
+    // or -1. width: the image's.
+    int64_t neighbour_on(size_t pixel, int width, Vec3 x, Vec3 n, float slack) const {
+        if (plane.empty()) return -1;
+        const int64_t w = width, h = static_cast<int64_t>(plane.size()) / w;
+        const int64_t px = static_cast<int64_t>(pixel) % w, py = static_cast<int64_t>(pixel) / w;
+        static constexpr int kSteps[8][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}, {1, 1}, {-1, 1}, {1, -1}, {-1, -1}};
+        for (const auto& st : kSteps) {
+            const int64_t qx = px + st[0], qy = py + st[1];
+            if (qx < 0 || qy < 0 || qx >= w || qy >= h) continue;
+            const SeenPlane& q = plane[static_cast<size_t>(qy * w + qx)];
+            if (!(std::abs(q.offset) <= std::numeric_limits<float>::max())) continue;
+            const Vec3 qn = decode_normal(q.normal);
+            if (dot(qn, n) >= 0.7f && std::abs(dot(qn, x) - q.offset) <= slack) return qy * w + qx;
+        }
+        return -1;
+    }
     const EdgeCut* cut(size_t pixel) const {
         if (cut_of.empty() || cut_of[pixel] == 0) return nullptr;
         return &cuts[cut_of[pixel] - 1];
@@ -106,6 +135,7 @@ struct GatherRadii {
     }
     size_t bytes() const {
         return radius.size() * sizeof(float) + (cut_of.size() + star_of.size()) * sizeof(uint32_t) +
+               plane.size() * sizeof(SeenPlane) +
                cuts.size() * sizeof(EdgeCut) + stars.size() * sizeof(EdgeStar);
     }
 };

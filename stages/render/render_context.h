@@ -86,6 +86,11 @@ struct RenderContext {
     // surface its centre sees gather in its star (edge_radius.h); false: they gather as if the
     // pixel had no star (the shrunk disc), to compare (tests). Stars need edge_cuts too.
     bool edge_stars = true;
+    // true (the program): a point of a pixel beside an edge that lies off the surface its centre
+    // sees (across a silhouette, on the wall behind a column) gathers as the neighbouring pixel
+    // whose centre sees its surface does (edge_radius.h, GatherRadii::plane); false: in the disc
+    // shrunk to the edge's distance, to compare (tests).
+    bool edge_neighbours = true;
     // true (the program): the lights' photons are aimed where the camera sees, where that pays
     // (emission_aim_pilot.h), by a pilot run in the constructor; tests that compare clear the
     // aim (LightSet::aim).

@@ -11,6 +11,72 @@ namespace sl {
 
 namespace {
 
+// Normals closer than ~45 degrees count as the same surface: keeps corners from leaking.
+constexpr float kSameSurface = 0.7f;
+
+// Where and how a point gathers by the rule of one pixel (its cut, its star or neither), at
+// that pixel's radius^2 r2 this pass.
+struct GatherDisc {
+    Vec3 centre;       // the disc's centre: the point, or the star's centre
+    double r2 = 0;     // the pixel's radius^2 (a star's region is kept out to it)
+    double gather_r2 = 0;
+    double shrunk_r2 = 0;  // the disc shrunk to the edge's distance
+    const EdgeStar* star = nullptr;
+    Vec3 star_t, star_b;
+    bool use_cut = false;
+    GatherBlockers::EdgeLine line{};
+    // False: the pixel has a cut or a star and the point is off its surface (or past the cut's
+    // line): the disc is the shrunk one. Plain pixels: whether the point is on the plane their
+    // centre sees, when the planes are kept (GatherRadii::plane).
+    bool on_surface = true;
+};
+
+GatherDisc disc_of(const RenderContext& ctx, size_t global, Vec3 x, Vec3 n, double r2) {
+    const GatherRadii& radii = ctx.gather_radii();
+    GatherDisc d;
+    d.centre = x;
+    d.r2 = d.gather_r2 = d.shrunk_r2 = r2;
+    const float slack = 0.1f * static_cast<float>(std::sqrt(r2));
+    // Beside an edge of the surface the pixel's centre sees, the disc is cut at the edge's line
+    // (edge_radius.h) when this point lies on that surface, before the line; else it gathers
+    // in the disc shrunk to the edge's distance (the pixel's radius times the cut's `shrunk`).
+    // A pixel has a cut, a star or neither.
+    const EdgeCut* cut = radii.cut(global);
+    // Or by its star (edge_radius.h), for a point on the surface the pixel's centre sees: the
+    // disc round that centre, kept sector by sector where the surface is; a wall rising in it
+    // sends the point to the shrunk disc too (gather_with).
+    const EdgeStar* star = radii.star(global);
+    if (star) {
+        d.shrunk_r2 = r2 * static_cast<double>(star->shrunk) * star->shrunk;
+        const Vec3 sn = decode_normal(star->normal);
+        if (ctx.edge_cuts && ctx.edge_stars && dot(sn, n) >= kSameSurface && std::abs(dot(sn, x - star->centre)) <= slack) {
+            d.centre = star->centre;
+            d.star = star;
+            make_basis(sn, d.star_t, d.star_b);
+        } else {
+            d.gather_r2 = d.shrunk_r2;
+            d.on_surface = false;
+        }
+    }
+    if (cut) {
+        const Vec3 cn = decode_normal(cut->normal);
+        d.line = {decode_normal(cut->across), cut->offset};
+        d.use_cut = ctx.edge_cuts && dot(cn, n) >= kSameSurface && std::abs(dot(cn, x) - cut->plane) <= slack &&
+                    dot(d.line.across, x) < d.line.offset;
+        d.shrunk_r2 = r2 * static_cast<double>(cut->shrunk) * cut->shrunk;
+        if (!d.use_cut) {
+            d.gather_r2 = d.shrunk_r2;
+            d.on_surface = false;
+        }
+    }
+    if (!cut && !star && !radii.plane.empty()) {
+        const GatherRadii::SeenPlane& own = radii.plane[global];
+        const Vec3 pn = decode_normal(own.normal);
+        d.on_surface = dot(pn, n) >= kSameSurface && std::abs(dot(pn, x) - own.offset) <= slack;
+    }
+    return d;
+}
+
 // The gather. adder(k) (k: the pass's normalisation, 1 / (area x photons emitted)) returns
 // add(slot, photon), which adds one photon's share to a slot of the pixel.
 template <class Adder>
@@ -18,61 +84,43 @@ uint32_t gather_with(const RenderContext& ctx, const VisiblePoint& vp, const Pho
                      int64_t photons_emitted, size_t pixel, SectionBuffer& buffer, Adder&& adder) {
     const BucketFinder bucket(ctx.timeline);  // every photon found asks it
     const SectionLayout& layout = buffer.layout;
-    // Normals closer than ~45 degrees count as the same surface: keeps corners from leaking.
-    constexpr float kSameSurface = 0.7f;
     const double inv_count = 1.0 / static_cast<double>(std::max<int64_t>(photons_emitted, 1));
     double& r2 = buffer.radius2[pixel];
     const Vec3 n = vp.normal;
-    Vec3 p = vp.position;  // the disc's centre
-    // Beside an edge of the surface the pixel's centre sees, the disc is cut at the edge's line
-    // (edge_radius.h) when this point lies on that surface, before the line; else it gathers
-    // in the disc shrunk to the edge's distance (the pixel's radius times the cut's `shrunk`).
-    // A pixel has a cut, a star or neither.
+    const GatherRadii& radii = ctx.gather_radii();
     const size_t global = buffer.share.global(pixel);
-    const EdgeCut* cut = ctx.gather_radii().cut(global);
-    GatherBlockers::EdgeLine line{};
-    bool use_cut = false;
-    double gather_r2 = r2;
-    // Or by its star (edge_radius.h), for a point on the surface the pixel's centre sees: the
-    // disc round that centre, kept sector by sector where the surface is; a wall rising in it
-    // sends the point to the shrunk disc too (below).
-    const EdgeStar* star = ctx.gather_radii().star(global);
-    const float shrunk = star ? star->shrunk : 1.0f;
-    Vec3 star_t, star_b;
-    if (star) {
-        const Vec3 sn = decode_normal(star->normal);
+    // The disc of the point: by the rule of the pixel whose centre sees its surface (disc_of),
+    // the pixel's own, or where the point lies off it (across a silhouette), the first
+    // neighbour's whose centre sees the point's plane, at that neighbour's initial radius times
+    // this pixel's shrink so far; failing both, the pixel's own shrunk disc.
+    GatherDisc disc = disc_of(ctx, global, vp.position, n, r2);
+    if (!disc.on_surface && ctx.edge_neighbours && !radii.radius.empty()) {
         const float slack = 0.1f * static_cast<float>(std::sqrt(r2));
-        if (ctx.edge_cuts && ctx.edge_stars && dot(sn, n) >= kSameSurface &&
-            std::abs(dot(sn, p - star->centre)) <= slack) {
-            p = star->centre;
-            make_basis(sn, star_t, star_b);
-        } else {
-            star = nullptr;
-            gather_r2 = r2 * static_cast<double>(shrunk) * shrunk;
+        const int64_t q = radii.neighbour_on(global, ctx.width, vp.position, n, slack);
+        if (q >= 0) {
+            const double scale = static_cast<double>(radii.radius[static_cast<size_t>(q)]) / radii.radius[global];
+            GatherDisc other = disc_of(ctx, static_cast<size_t>(q), vp.position, n, r2 * scale * scale);
+            if (other.on_surface) disc = other;
         }
     }
-    if (cut) {
-        const Vec3 cn = decode_normal(cut->normal);
-        line = {decode_normal(cut->across), cut->offset};
-        const float slack = 0.1f * static_cast<float>(std::sqrt(r2));
-        use_cut = ctx.edge_cuts && dot(cn, n) >= kSameSurface && std::abs(dot(cn, p) - cut->plane) <= slack &&
-                  dot(line.across, p) < line.offset;
-        if (!use_cut) gather_r2 = r2 * static_cast<double>(cut->shrunk) * cut->shrunk;
-    }
+    Vec3 p = disc.centre;
+    double gather_r2 = disc.gather_r2;
+    const EdgeStar* star = disc.star;
+    const Vec3 star_t = disc.star_t, star_b = disc.star_b;
     // The surfaces that cut the disc (a wall at a floor's edge): photons beyond them are not
     // gathered, and the disc's area is what is left of it (gather_blockers.h).
-    GatherBlockers blockers(ctx.geometry, p, n, static_cast<float>(gather_r2), use_cut ? &line : nullptr);
+    GatherBlockers blockers(ctx.geometry, p, n, static_cast<float>(gather_r2), disc.use_cut ? &disc.line : nullptr);
     if (star && blockers.any()) {
         p = vp.position;
-        gather_r2 = r2 * static_cast<double>(shrunk) * shrunk;
+        gather_r2 = disc.shrunk_r2;
         star = nullptr;
         blockers = GatherBlockers(ctx.geometry, p, n, static_cast<float>(gather_r2));
     }
     // This pass's estimate: f * flux / (area * photons emitted this pass), area pi R^2 but for
     // blockers, or the star's.
-    const double area = star ? star->area(std::sqrt(r2)) : blockers.area();
+    const double area = star ? star->area(std::sqrt(disc.r2)) : blockers.area();
     const float k = static_cast<float>(inv_count / area);
-    const float star_r = static_cast<float>(std::sqrt(r2));
+    const float star_r = static_cast<float>(std::sqrt(disc.r2));
     auto add = adder(k);
     // Sides: a photon counts only on the side of its own surface the point is on, and only if it
     // is not below the point's surface (stacked sheets, a thin table over a floor). The slack
