@@ -183,11 +183,14 @@ GatherRadii edge_aware_radii(const SceneGeometry& geometry, const PinholeCamera&
     const float slack = 0.1f * r0;
     // Whether what q sees ends p's surface: nothing, something behind p's tangent plane, or
     // something turned away on it. In front of the plane is a wall rising (the blockers') or
-    // something nearer the eye, behind which p's surface goes on.
+    // something nearer the eye, behind which p's surface goes on. On the plane, a surface
+    // turned toward p is a wall rising from it too (the foot of a wall, a column's base: a
+    // concave corner, the blockers'), not the surface's end: a box's top edge turns away.
     auto off = [&](const Seen& p, const Seen& q) {
         const float h = dot(p.normal, q.position - p.position);
         if (h > slack) return false;
-        return h < -slack || dot(p.normal, q.normal) < kSameSurface;
+        if (h < -slack) return true;
+        return dot(p.normal, q.normal) < kSameSurface && !(dot(q.normal, p.position - q.position) > 0);
     };
     auto ends = [&](const Seen& p, const CentreHit& qh, int qx, int qy) {
         return !(qh.t >= 0) || off(p, decoded(qh, qx, qy));
