@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 
 #include "pipeline/frames_in_memory.h"
 #include "pipeline/render_frames.h"
@@ -80,19 +81,20 @@ struct Band {
     double mean = 0;     // over the pixels and the seeds, in units of the analytic radiance
     double spread = 0;   // per pixel: the RMS over the pixels of each one's standard deviation over seeds
 };
-Band band_over(const std::vector<std::pair<int, int>>& pixels, int seeds, bool cuts, bool stars) {
+// The pixels of `scene` (with `set` applied to its context) over seeds, in units of `want`.
+Band band_of(SceneDesc (*scene)(), const std::function<void(RenderContext&)>& set,
+             const std::vector<std::pair<int, int>>& pixels, int seeds, double want) {
     std::vector<double> m(pixels.size(), 0.0), m2(pixels.size(), 0.0);
     for (int seed = 1; seed <= seeds; ++seed) {
-        SceneDesc s = plate_in_a_beam();
+        SceneDesc s = scene();
         s.render.seed = static_cast<uint64_t>(seed);
         RenderContext ctx(s);
-        ctx.edge_cuts = cuts;
-        ctx.edge_stars = stars;
+        set(ctx);
         FramesInMemory sink;
         render_frames(ctx, {Strategy::Single, 1}, sink);
         for (size_t i = 0; i < pixels.size(); ++i) {
             const auto [x, y] = pixels[i];
-            const double v = sink.steady[(static_cast<size_t>(y) * kRes + x) * 3] / kWant;
+            const double v = sink.steady[(static_cast<size_t>(y) * kRes + x) * 3] / want;
             m[i] += v, m2[i] += v * v;
         }
     }
@@ -106,6 +108,15 @@ Band band_over(const std::vector<std::pair<int, int>>& pixels, int seeds, bool c
     b.mean /= static_cast<double>(pixels.size());
     b.spread = std::sqrt(var / static_cast<double>(pixels.size()));
     return b;
+}
+Band band_over(const std::vector<std::pair<int, int>>& pixels, int seeds, bool cuts, bool stars) {
+    return band_of(
+        plate_in_a_beam,
+        [&](RenderContext& ctx) {
+            ctx.edge_cuts = cuts;
+            ctx.edge_stars = stars;
+        },
+        pixels, seeds, kWant);
 }
 
 // `after` has the analytic light, `before` less (the shrunk discs reach a little over the
@@ -203,30 +214,8 @@ Band silhouette_over(int seeds, bool neighbours) {
         pixels.push_back({k, 9});
         pixels.push_back({k, 30});
     }
-    std::vector<double> m(pixels.size(), 0.0), m2(pixels.size(), 0.0);
-    for (int seed = 1; seed <= seeds; ++seed) {
-        SceneDesc s = plate_over_a_lit_floor();
-        s.render.seed = static_cast<uint64_t>(seed);
-        RenderContext ctx(s);
-        ctx.edge_neighbours = neighbours;
-        FramesInMemory sink;
-        render_frames(ctx, {Strategy::Single, 1}, sink);
-        for (size_t i = 0; i < pixels.size(); ++i) {
-            const auto [x, y] = pixels[i];
-            const double v = sink.steady[(static_cast<size_t>(y) * kRes + x) * 3] / want;
-            m[i] += v, m2[i] += v * v;
-        }
-    }
-    Band b;
-    double var = 0;
-    for (size_t i = 0; i < pixels.size(); ++i) {
-        const double mean = m[i] / seeds;
-        b.mean += mean;
-        var += (m2[i] - seeds * mean * mean) / (seeds - 1);
-    }
-    b.mean /= static_cast<double>(pixels.size());
-    b.spread = std::sqrt(var / static_cast<double>(pixels.size()));
-    return b;
+    return band_of(plate_over_a_lit_floor, [&](RenderContext& ctx) { ctx.edge_neighbours = neighbours; }, pixels,
+                   seeds, want);
 }
 
 TEST(EdgeRadius, PointsAcrossASilhouetteGatherAsTheNeighbourThatSeesTheirSurface) {
