@@ -105,6 +105,13 @@ struct GatherRadii {
     struct SeenPlane {
         OctNormal normal;
         float offset = std::numeric_limits<float>::quiet_NaN();
+        // Whether point x with normal n lies on this plane: normals within ~45 degrees (the
+        // gather's same-surface test), x within `slack` of the plane. False when none was seen.
+        bool holds(Vec3 x, Vec3 n, float slack) const {
+            if (!(std::abs(offset) <= std::numeric_limits<float>::max())) return false;
+            const Vec3 pn = decode_normal(normal);
+            return dot(pn, n) >= 0.7f && std::abs(dot(pn, x) - offset) <= slack;
+        }
     };
     std::vector<SeenPlane> plane;
     // The neighbour (8 around `pixel`, the nearer four first) whose centre sees the plane that
@@ -118,10 +125,7 @@ struct GatherRadii {
         for (const auto& st : kSteps) {
             const int64_t qx = px + st[0], qy = py + st[1];
             if (qx < 0 || qy < 0 || qx >= w || qy >= h) continue;
-            const SeenPlane& q = plane[static_cast<size_t>(qy * w + qx)];
-            if (!(std::abs(q.offset) <= std::numeric_limits<float>::max())) continue;
-            const Vec3 qn = decode_normal(q.normal);
-            if (dot(qn, n) >= 0.7f && std::abs(dot(qn, x) - q.offset) <= slack) return qy * w + qx;
+            if (plane[static_cast<size_t>(qy * w + qx)].holds(x, n, slack)) return qy * w + qx;
         }
         return -1;
     }

@@ -69,11 +69,7 @@ GatherDisc disc_of(const RenderContext& ctx, size_t global, Vec3 x, Vec3 n, doub
             d.on_surface = false;
         }
     }
-    if (!cut && !star && !radii.plane.empty()) {
-        const GatherRadii::SeenPlane& own = radii.plane[global];
-        const Vec3 pn = decode_normal(own.normal);
-        d.on_surface = dot(pn, n) >= kSameSurface && std::abs(dot(pn, x) - own.offset) <= slack;
-    }
+    if (!cut && !star && !radii.plane.empty()) d.on_surface = radii.plane[global].holds(x, n, slack);
     return d;
 }
 
