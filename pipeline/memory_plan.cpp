@@ -16,6 +16,7 @@
 #include "stages/render/render_context.h"
 #include "stages/render/section_buffer.h"
 #include "stages/render/section_layout.h"
+#include "stages/render/beam_splat.h"
 #include "stages/render/volume_photon_map.h"
 
 namespace sl {
@@ -109,7 +110,10 @@ MemoryBaseline memory_baseline(const SceneDesc& scene, const RunOptions& options
     const double photons = static_cast<double>(std::max<int64_t>(scene.render.photons_per_pass, 0));
     const auto count = [&](double per_path) { return static_cast<uint64_t>(std::ceil(photons * per_path * 1.02)); };
     b.photon_map = PhotonMap::bytes_needed(count(records_per_path));
-    if (events_per_path > 0) b.volume_photons = VolumePhotonMap::bytes_needed(count(events_per_path));
+    // The volume photons' tree, and their places on the image for the segments from the camera.
+    if (events_per_path > 0)
+        b.volume_photons =
+            VolumePhotonMap::bytes_needed(count(events_per_path)) + BeamSplat::bytes_needed(count(events_per_path));
 
     // The automatic radius stops short of edges pixel by pixel: a float a pixel, for the run,
     // and where a pixel's disc is cut at an edge's line or kept in a star instead, an index a

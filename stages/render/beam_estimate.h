@@ -8,8 +8,11 @@
 // into the slot of each photon's arrival time (plus the camera leg with camera_tof). Like the
 // surface gather, each pixel is gathered by the thread that traced it, in a fixed order. The
 // radius shrinks after every pass: r^2_(i+1) = r^2_i (i + alpha) / (i + 1).
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 
+#include "core/sampling.h"
 #include "stages/render/camera_segments.h"
 #include "stages/render/render_context.h"
 #include "stages/render/section_buffer.h"
@@ -20,6 +23,47 @@ namespace sl {
 struct BeamCounters {
     uint64_t segments = 0;     // camera segments queried
     uint64_t photon_hits = 0;  // photons gathered
+};
+
+// The pass's kernel, written once for the search along a segment (gather_volume_at) and the
+// photons' side of it (beam_splat.h): which photons a segment takes, and what each adds.
+class BeamKernel {
+public:
+    BeamKernel(const RenderContext& ctx, const SectionBuffer& buffer, int64_t photons_emitted);
+
+    float r0() const { return r0_; }
+    float slope() const { return slope_; }
+    // The radius's offset for a segment: its floor grows with the camera leg before it.
+    float s0(const CameraSegment& sg) const { return slope_ * static_cast<float>(sg.camera_ns * kSpeedOfLight); }
+    // The widest radius a photon at distance `from_camera` (along the path) can be taken with.
+    float widest(float from_camera) const { return std::max(r0_, slope_ * from_camera); }
+
+    // Adds photon ph, taken at s with the squared radius q, to the pixel's slots.
+    void add(const CameraSegment& sg, const VolumePhotonPayload& ph, float s, float q, size_t pixel,
+             SectionBuffer& buffer, BeamCounters& counters) const {
+        if (ph.depth > sg.depth_left) return;
+        ++counters.photon_hits;
+        // The photon's light leaves towards the camera: against the segment. The kernel is
+        // normalised at the photon's own radius: K = 1 / (pi r(s)^2).
+        const float ph_fn = medium_.phase(-dot(ph.dir, sg.dir));
+        const float k = static_cast<float>(n_inv_ / (kPi * static_cast<double>(q)));
+        const Vec3 L = sg.beta * (k * ph_fn) * medium_.transmittance(s) * ph.flux;
+        const double t = ph.t_ns + (tof_ ? sg.camera_ns + static_cast<double>(s * inv_c_) : 0.0);
+        const int slot = buffer.layout.slot_of_bucket(bucket_(t));
+        if (slot < 0) return;
+        float* acc = buffer.slot(pixel, slot);
+        acc[0] += L.x;
+        acc[1] += L.y;
+        acc[2] += L.z;
+    }
+
+private:
+    const HomogeneousMedium& medium_;
+    BucketFinder bucket_;
+    bool tof_;
+    double n_inv_;
+    float r0_, slope_;
+    float inv_c_ = static_cast<float>(1.0 / kSpeedOfLight);
 };
 
 // Adds the estimate along one of a pixel's segments to its slots, with this pass's volume radius

@@ -17,6 +17,7 @@
 #include "core/rng.h"
 #include "core/specular_path.h"
 #include "core/surface_material.h"
+#include "stages/render/beam_splat.h"
 #include "stages/render/single_scatter.h"
 
 namespace sl {
@@ -85,6 +86,9 @@ struct PixelTracer {
     // The same for the light samples of the in-scattering along the pixel's first camera
     // segment in the medium (CameraSegment::stratified_pixel).
     int64_t segment_points_pixel = -1;
+    // Where the pixel's segment from the camera goes when the photons' side estimates it
+    // (BeamSplat), instead of searching the tree; null once it is taken, or without the splat.
+    CameraSegment* first_segment = nullptr;
     bool timed = false;               // count the cycles spent on in-scattering for this pixel
     uint64_t medium_cycles = 0;       // of this pixel (when timed)
 
@@ -402,10 +406,16 @@ struct PixelTracer {
             single_scatter_along(ctx, s, rng, buffer, deposits, local, single);
             rays += single.shadow_rays - before;
         }
-        if (volume) {
+        const Vec3 eye = ctx.camera.position();
+        const bool from_camera =
+            first_segment && specular == 0 && leg_ns == 0 && o.x == eye.x && o.y == eye.y && o.z == eye.z;
+        if (volume && from_camera) {
+            *first_segment = s;  // estimated with the range's other pixels (BeamSplat::gather)
+        } else if (volume) {
             deposits.drain();  // the beam estimate adds to the pixel's slots directly
             gather_volume_at(ctx, s, *volume, emitted, local, buffer, beam);
         }
+        first_segment = nullptr;
         beta *= medium->transmittance(t1 - t0);
         if (timed) medium_cycles += cycle_clock() - c0;
     }
@@ -497,13 +507,22 @@ CameraPassTimes camera_pass(const RenderContext& ctx, int pass, const PassPhoton
     };
     const auto t0 = std::chrono::steady_clock::now();
     const std::clock_t cpu0 = std::clock();
+    const bool splat = volume && ctx.beam_splat;
+    BeamSplat splatted;
+    const uint64_t splat_c0 = cycle_clock();
+    if (splat) splatted.build(ctx, *volume, buffer);
+    // Counted with the sampled pixels' cycles, at their rate (one pixel in kTimedEvery).
+    const uint64_t splat_build = (cycle_clock() - splat_c0) / kTimedEvery;
     Work total = tbb::parallel_reduce(
         tbb::blocked_range<size_t>(0, buffer.radius2.size(), 256), Work{},  // this rank's pixels
         [&](const tbb::blocked_range<size_t>& r, Work w) {
             DepositQueue deposits;  // drained when it goes out of scope, at the range's end
             PixelTracer tracer{ctx, buffer, pass, medium, deposits, volume, photons.emitted};
             const PixelShare share = buffer.share;
+            // The range's segments from the camera, for the beam estimate from the photons' side.
+            std::vector<CameraSegment> first(splat ? r.size() : 0);
             for (size_t p = r.begin(); p != r.end(); ++p) {
+                if (splat) tracer.first_segment = &first[p - r.begin()];
                 // The split between the parts is sampled on one pixel in kTimedEvery: reading
                 // the clock four times a pixel cost as much as a sixth of the pass.
                 const bool timed = p % kTimedEvery == 0;
@@ -521,6 +540,12 @@ CameraPassTimes camera_pass(const RenderContext& ctx, int pass, const PassPhoton
                     w.gather += c2 - c1;
                 }
             }
+            if (splat) {
+                deposits.drain();  // the pixels' other light first, as when each searched the tree
+                const uint64_t c0 = cycle_clock();
+                splatted.gather(ctx, *volume, photons.emitted, r.begin(), r.end(), first, buffer, tracer.beam);
+                w.volume += (cycle_clock() - c0) / kTimedEvery;
+            }
             counters.rays.fetch_add(tracer.rays, std::memory_order_relaxed);
             counters.beam_segments.fetch_add(tracer.beam.segments, std::memory_order_relaxed);
             counters.beam_hits.fetch_add(tracer.beam.photon_hits, std::memory_order_relaxed);
@@ -534,6 +559,7 @@ CameraPassTimes camera_pass(const RenderContext& ctx, int pass, const PassPhoton
             a.gather += b.gather;
             return a;
         });
+    total.volume += splat_build;
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const double cpu = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
     buffer.max_radius = std::sqrt(total.max_r2);

@@ -36,6 +36,13 @@ struct PixelShare {
     size_t global(size_t local) const {
         return ((local / kTile) * static_cast<size_t>(ranks) + static_cast<size_t>(rank)) * kTile + local % kTile;
     }
+    // global()'s inverse: false when another rank owns the pixel.
+    bool local_of(size_t global_pixel, size_t& local) const {
+        const size_t tile = global_pixel / kTile, n = static_cast<size_t>(ranks);
+        if (tile % n != static_cast<size_t>(rank)) return false;
+        local = (tile / n) * kTile + global_pixel % kTile;
+        return true;
+    }
 };
 
 // Independent streams of collective calls, each made by one thread at a time in the same order

@@ -91,6 +91,9 @@ struct RenderContext {
     // whose centre sees its surface does (edge_radius.h, GatherRadii::plane); false: in the disc
     // shrunk to the edge's distance, to compare (tests).
     bool edge_neighbours = true;
+    // The beam estimate of the segments that leave the camera from the photons' side
+    // (beam_splat.h); off, every segment searches the volume BVH: the same estimate, for tests.
+    bool beam_splat = true;
     // true (the program): the lights' photons are aimed where the camera sees, where that pays
     // (emission_aim_pilot.h), by a pilot run in the constructor; tests that compare clear the
     // aim (LightSet::aim).

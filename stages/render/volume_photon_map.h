@@ -44,6 +44,7 @@ public:
                (2 * events / kLeaf + 1) * sizeof(Node);
     }
     const VolumePhotonPayload& payload(uint32_t i) const { return payload_[i]; }
+    Vec3 position(uint32_t i) const { return {px_[i], py_[i], pz_[i]}; }  // i in leaf order
 
     // Calls f(photon index, s) for every photon whose projection s onto o + s d lies in
     // [0, length] and whose distance to that line is below sqrt(r2). d is unit length.
