@@ -114,8 +114,11 @@ private:
     // far fewer in a large, thin haze (the cathedral: about 12; a sun's photons mostly land
     // outside). The count per pass comes from a pilot of kVolumePilotPaths paths with a seed of
     // its own (every seed of a scene, every rank and section get the same radius); the radius
-    // grows at most 4x and stays under 5 % of the medium's size.
-    static constexpr double kBeamPhotons = 40;
+    // grows at most 4x and stays under 5 % of the medium's size. 80: since the segments from the
+    // camera take their photons from the photons' side (beam_splat.h), a photon taken costs less
+    // than half of what it did, and twice the photons of 40 pay (the cathedral: noise^2 x CPU 1.29x
+    // lower, its error against a 256-pass reference lower too; docs/medium.md).
+    static constexpr double kBeamPhotons = 80;
     static constexpr int64_t kVolumePilotPaths = 4 * 4096;
     static constexpr uint64_t kPilotSeed = 0x5eed;
     float widened_for_sparse_photons(float r, const HomogeneousMedium& m);
