@@ -541,7 +541,7 @@ CameraPassTimes camera_pass(const RenderContext& ctx, int pass, const PassPhoton
                 }
             }
             if (splat) {
-                deposits.drain();  // the pixels' other light first, as when each searched the tree
+                deposits.drain();  // the pixels' other light first: each pixel's sums keep one order
                 const uint64_t c0 = cycle_clock();
                 splatted.gather(ctx, *volume, photons.emitted, r.begin(), r.end(), first, buffer, tracer.beam);
                 w.volume += (cycle_clock() - c0) / kTimedEvery;
