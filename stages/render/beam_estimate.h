@@ -26,7 +26,7 @@ struct BeamCounters {
 };
 
 // The pass's kernel, written once for the search along a segment (gather_volume_at) and the
-// photons' side of it (beam_splat.h): which photons a segment takes, and what each adds.
+// photons' side of it (beam_splat.h): the radius along a segment, and what a photon taken adds.
 class BeamKernel {
 public:
     BeamKernel(const RenderContext& ctx, const SectionBuffer& buffer, int64_t photons_emitted);

@@ -92,13 +92,10 @@ void BeamSplat::gather(const RenderContext& ctx, const VolumePhotonMap& photons,
                 for (; g < run_end; ++g, ++l) {
                     if (l < begin || l >= end) continue;
                     const Ray& ry = rays[l - begin];
-                    // VolumePhotonMap::for_each_along_cone's test, the same operations: the same photons.
-                    const float vx = p.x - ry.ox, vy = p.y - ry.oy, vz = p.z - ry.oz;
-                    const float sp = vx * ry.dx + vy * ry.dy + vz * ry.dz;
-                    const float qx = vx - ry.dx * sp, qy = vy - ry.dy * sp, qz = vz - ry.dz * sp;
-                    const float rs = std::max(r0, ry.s0 + slope * sp);
-                    const float q = rs * rs;
-                    if ((sp >= 0) & (sp <= ry.length) & (qx * qx + qy * qy + qz * qz < q) & (ry.length > 0))
+                    if (!(ry.length > 0)) continue;
+                    float sp, q;  // the search's own test: the same photons
+                    if (VolumePhotonMap::in_cone(p, {ry.ox, ry.oy, ry.oz}, {ry.dx, ry.dy, ry.dz}, ry.length, r0,
+                                                 ry.s0, slope, sp, q))
                         kernel.add(first[l - begin], photons.payload(i), sp, q, l, buffer, counters);
                 }
             }

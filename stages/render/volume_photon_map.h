@@ -4,6 +4,7 @@
 // without marching. Median-split BVH over the photon positions, rebuilt each pass; node
 // boxes are tight and grown by r at query time (r changes every pass). Positions are kept
 // apart (SoA, leaf order) from what is read only on a hit.
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -58,6 +59,20 @@ public:
     void for_each_along_cone(Vec3 o, Vec3 d, float length, float r0, float s0, float slope, F&& f) const;
 
     static constexpr uint32_t kLeaf = 8;  // <= 32: a leaf's hits fit a bit mask
+
+    // The cone's test, written once for the search above and the photons' side (beam_splat.cpp):
+    // whether the photon at p lies within r(s) = max(r0, s0 + slope s) of o + s d, s in
+    // [0, length]; s and r(s)^2 are returned. The offset is computed from the offset vector, not
+    // |v|^2 - s^2, so it does not cancel far from o.
+    static bool in_cone(Vec3 p, Vec3 o, Vec3 d, float length, float r0, float s0, float slope, float& s,
+                        float& q) {
+        const float vx = p.x - o.x, vy = p.y - o.y, vz = p.z - o.z;
+        s = vx * d.x + vy * d.y + vz * d.z;
+        const float qx = vx - d.x * s, qy = vy - d.y * s, qz = vz - d.z * s;
+        const float rs = std::max(r0, s0 + slope * s);
+        q = rs * rs;
+        return (s >= 0) & (s <= length) & (qx * qx + qy * qy + qz * qz < q);
+    }
 
 private:
     struct Node {
@@ -137,14 +152,8 @@ void VolumePhotonMap::for_each_along_cone(Vec3 o, Vec3 d, float length, float r0
         uint32_t mask = 0;
         float ss[kLeaf], rr[kLeaf];
         for (uint32_t k = 0; k < count; ++k) {
-            const float vx = px_[first + k] - o.x, vy = py_[first + k] - o.y, vz = pz_[first + k] - o.z;
-            const float s = vx * d.x + vy * d.y + vz * d.z;
-            const float qx = vx - d.x * s, qy = vy - d.y * s, qz = vz - d.z * s;
-            const float rs = std::max(r0, s0 + slope * s);
-            ss[k] = s;
-            rr[k] = rs * rs;
-            const bool in = (s >= 0) & (s <= length) & (qx * qx + qy * qy + qz * qz < rr[k]);
-            mask |= static_cast<uint32_t>(in) << k;
+            const Vec3 p{px_[first + k], py_[first + k], pz_[first + k]};
+            mask |= static_cast<uint32_t>(in_cone(p, o, d, length, r0, s0, slope, ss[k], rr[k])) << k;
         }
         while (mask) {
             const uint32_t k = static_cast<uint32_t>(std::countr_zero(mask));
