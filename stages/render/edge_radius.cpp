@@ -19,7 +19,7 @@ struct CentreHit {
     OctNormal normal{};
 };
 
-constexpr float kSameSurface = 0.7f;  // the gather's own: normals within ~45 degrees
+constexpr float kSameSurface = GatherRadii::kSameSurface;  // the gather's own
 constexpr int kMaxReach = 16;         // pixels searched each way at most
 constexpr float kFloor = 1.0f / 64;   // of r0: a guard, not a choice
 // Where a cut's mirror stands at least, in radii: the gather's own.

@@ -88,6 +88,9 @@ struct EdgeStar {
 };
 
 struct GatherRadii {
+    // Two normals belong to one surface when their cosine is at least this (~45 degrees): the
+    // gather's test, which the edge map and the planes below must share with it.
+    static constexpr float kSameSurface = 0.7f;
     // Per pixel (row-major, width x height): the initial radius, min(r0, the distance to the
     // nearest edge pixel no cut accounts for), never below r0 / 64; r0 for a star's pixel.
     std::vector<float> radius;
@@ -110,7 +113,7 @@ struct GatherRadii {
         bool holds(Vec3 x, Vec3 n, float slack) const {
             if (!(std::abs(offset) <= std::numeric_limits<float>::max())) return false;
             const Vec3 pn = decode_normal(normal);
-            return dot(pn, n) >= 0.7f && std::abs(dot(pn, x) - offset) <= slack;
+            return dot(pn, n) >= kSameSurface && std::abs(dot(pn, x) - offset) <= slack;
         }
     };
     std::vector<SeenPlane> plane;

@@ -12,7 +12,7 @@ namespace sl {
 namespace {
 
 // Normals closer than ~45 degrees count as the same surface: keeps corners from leaking.
-constexpr float kSameSurface = 0.7f;
+constexpr float kSameSurface = GatherRadii::kSameSurface;
 
 // Where and how a point gathers by the rule of one pixel (its cut, its star or neither), at
 // that pixel's radius^2 r2 this pass.
