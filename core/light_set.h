@@ -138,6 +138,13 @@ public:
     // the stored normal) faces the viewer, and the radiance it then sends.
     bool quad_front_seen(size_t i, Vec3 d) const { return dot(d, lights_[i].normal) < 0; }
     Vec3 quad_radiance(size_t i) const { return lights_[i].desc.radiance; }
+    // Quad light i's corner, edges and unit front normal (edge1 x edge2); false for any other light.
+    bool quad_geometry(size_t i, Vec3& corner, Vec3& edge1, Vec3& edge2, Vec3& normal) const {
+        const Light& l = lights_[i];
+        if (l.mesh || l.desc.type != LightType::Quad) return false;
+        corner = l.desc.corner, edge1 = l.desc.edge1, edge2 = l.desc.edge2, normal = l.normal;
+        return true;
+    }
     // The solid-angle densities with which sample_direct would have picked the point a path
     // met at distance t along unit d: on quad light i (seen from the front), or on an emissive
     // surface of material m with unit normal n (0 where it picks none).

@@ -18,6 +18,7 @@
 #include "core/specular_path.h"
 #include "core/surface_material.h"
 #include "stages/render/beam_splat.h"
+#include "stages/render/direct_by_frames.h"
 #include "stages/render/single_scatter.h"
 
 namespace sl {
@@ -435,17 +436,21 @@ struct PixelTracer {
             float* amb = &buffer.ambient[local * 3];
             amb[0] += a.x; amb[1] += a.y; amb[2] += a.z;
         }
-        direct_light(p, hit_t, nf, nm, back_ns, rng, [&](Vec3, float) { return f; });
+        direct_light(p, hit_t, nf, nm, back_ns, rng, [&](Vec3, float) { return f; }, &f);
     }
 
     // Direct light at p: one shadow ray per light, arriving after the light-to-point length;
     // weight(to_light, the sample's solid-angle density) turns the irradiance (cosine on ns included) into the pixel's radiance.
+    // diffuse: at a Lambertian point, that weight itself (the same for every direction), so that
+    // a pulsed quad may be sampled frame by frame (direct_by_frames.h).
     template <class Weight>
-    void direct_light(Vec3 p, float hit_t, Vec3 nf, Vec3 ns, double back_ns, Rng& rng, Weight&& weight) {
+    void direct_light(Vec3 p, float hit_t, Vec3 nf, Vec3 ns, double back_ns, Rng& rng, Weight&& weight,
+                      const Vec3* diffuse = nullptr) {
         Vec3 origin = p + nf * ray_epsilon(p, hit_t);  // the hit's error grows with the ray's length
         const bool carried = buffer.layout.carried;
         const int64_t stratified_pixel = light_points_pixel;
         light_points_pixel = -1;  // the path's later vertices draw theirs at random
+        const bool by_frames = ctx.pulse_direct_by_frames && ctx.emission == EmissionMode::Pulse;
         for (size_t i = 0; i < ctx.lights.count(); ++i) {
             DirectLightSample s;
             // Drawn even when replaced: the path's later numbers stay the same either way.
@@ -454,6 +459,9 @@ struct PixelTracer {
             // A carried section keeps nothing that arrives before it: a light whose every
             // sample would is not even sampled.
             if (carried && ctx.timeline.bucket(ctx.lights.latest_arrival_ns(i, p) + back_ns) < buffer.layout.first_bucket)
+                continue;
+            if (diffuse && by_frames &&
+                quad_direct_by_frames(ctx, i, p, origin, nf, ns, back_ns, u1, u2, *diffuse, buffer, deposits, local, rays))
                 continue;
             if (!ctx.lights.sample_direct(i, p, ns, u1, u2, s)) continue;
             if (dot(s.to_light, nf) <= 0) continue;  // below the true surface: no leak through it
