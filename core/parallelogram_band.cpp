@@ -50,6 +50,7 @@ ParallelogramFromPoint::ParallelogramFromPoint(Vec3 x, Vec3 corner, Vec3 edge1, 
         const double el = std::sqrt(ex * ex + ey * ey);
         mx_[i] = -ey / el, my_[i] = ex / el;  // left of the edge: inside
         inside_[i] = (px_ - cx[i]) * mx_[i] + (py_ - cy[i]) * my_[i];
+        theta_[i] = std::atan2(my_[i], mx_[i]);
         inside = inside && inside_[i] >= 0;
         near2 = std::min(near2, segment_distance2(px_, py_, cx[i], cy[i], cx[j], cy[j]));
         const double dx = px_ - cx[i], dy = py_ - cy[i];
@@ -75,7 +76,7 @@ int ParallelogramFromPoint::arcs(double rho, double lo[kMaxArcs], double hi[kMax
         if (kappa <= -1) continue;  // the whole circle is on the inner side
         if (kappa >= 1) return 0;
         const double w = std::acos(kappa);
-        double a = std::atan2(my_[e], mx_[e]) - w;
+        double a = theta_[e] - w;
         a -= kTwoPi * std::floor(a / kTwoPi);
         const double b = a + 2 * w;
         // The arc as one or two intervals of [0, 2 pi), intersected with the ones kept so far.

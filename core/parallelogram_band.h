@@ -40,6 +40,7 @@ private:
     double vx_[4]{}, vy_[4]{};   // the corners, counter-clockwise
     double mx_[4]{}, my_[4]{};   // each edge's inward unit normal
     double inside_[4]{};         // the foot point's distance inside each edge's line
+    double theta_[4]{};          // each inward normal's angle, atan2(my, mx): once, not per band
     double rho_min2_ = 0, rho_max2_ = 0;
     double d_min_ = 0, d_max_ = 0;
 };

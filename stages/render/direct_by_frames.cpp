@@ -2,21 +2,30 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "core/parallelogram_band.h"
+#include "core/pass_sequences.h"
+#include "core/rng.h"
 #include "foundation/constants.h"
 
 namespace sl {
 namespace {
 
-constexpr double kGolden2 = 0.7548776662466927;  // each band's pair: u1 + j phi2, u2 + j phi3 (mod 1)
-constexpr double kGolden3 = 0.5698402909980532;
-
-float shifted(float u, double step, int64_t j) {
-    double v = static_cast<double>(u) + step * static_cast<double>(j + 2);
-    v -= std::floor(v);
-    return std::min(static_cast<float>(v), 0x1.fffffep-1f);
-}
+// Each band's pair of uniforms is the pixel's pair shifted modulo 1 by two numbers hashed from
+// the band's earliest time (the exact double): a timeline shifted by whole frames, whose edges
+// are the same numbers, draws the same point for the same band (TimeEdges.*), and each band's
+// points stay stratified over the passes (the shift is the same in every pass).
+struct BandShift {
+    float a, b;
+    explicit BandShift(double edge_ns) {
+        uint64_t bits;
+        std::memcpy(&bits, &edge_ns, sizeof bits);
+        const uint64_t h = mix64(bits ^ 0x9e3779b97f4a7c15ull);
+        a = static_cast<float>(h >> 40) * 0x1p-24f;
+        b = static_cast<float>((h >> 16) & 0xffffff) * 0x1p-24f;
+    }
+};
 
 }  // namespace
 
@@ -29,25 +38,29 @@ bool quad_direct_by_frames(const RenderContext& ctx, size_t light, Vec3 p, Vec3 
     if (!quad.valid()) return false;
     const Timeline& tl = ctx.timeline;
     const BucketFinder bucket(tl);
-    // The whole timeline's buckets, and one stratum before them and one after (as in
-    // single_scatter.cpp): the bands do not depend on the section.
-    const int64_t j_lo = 1 - tl.pulse_buckets, j_end = tl.frames;
+    // The bands are the cells of the timeline's lattice of edges, start + j delta, also before
+    // the start and after the end (where the section's slot for them is the before or after
+    // one): a band is the same interval of time whatever the timeline, when the edges are.
     const double t_near = quad.min_distance() / kSpeedOfLight + back_ns;
     const double t_far = quad.max_distance() / kSpeedOfLight + back_ns;
-    const int64_t jb_lo = std::clamp<int64_t>(bucket(t_near), j_lo - 1, j_end);
-    const int64_t jb_hi = std::clamp<int64_t>(bucket(t_far), j_lo - 1, j_end);
-    if (jb_hi == jb_lo || jb_hi - jb_lo + 1 > kMaxFrameBands) return false;
+    // One bucket: the one sample of the whole quad does (and costs less). A spread wider than
+    // kMaxFrameBands frames: too, judged by the frame width, not by the buckets this timeline
+    // has there, so that shifted timelines decide alike.
+    if ((t_far - t_near) > kMaxFrameBands * tl.delta()) return false;
+    const int64_t jb_lo = bucket(t_near), jb_hi = bucket(t_far);
+    if (!(jb_hi > jb_lo) || jb_hi - jb_lo > kMaxFrameBands + 2) return false;  // the last: far off the timeline
     const Vec3 radiance = ctx.lights.quad_radiance(light);
     const SectionLayout& layout = buffer.layout;
     for (int64_t j = jb_lo; j <= jb_hi; ++j) {
         const int slot = layout.slot_of_bucket(j);
         if (slot < 0) continue;  // a bucket this section keeps nothing for: no shadow ray either
         // The band of distances whose light arrives in bucket j.
-        const double d0 = j < j_lo ? 0.0 : (tl.edge(j) - back_ns) * kSpeedOfLight;
-        const double d1 = j >= j_end ? INFINITY : (tl.edge(j + 1) - back_ns) * kSpeedOfLight;
+        const double edge0 = tl.edge(j), edge1 = tl.edge(j + 1);
+        const double d0 = (edge0 - back_ns) * kSpeedOfLight, d1 = (edge1 - back_ns) * kSpeedOfLight;
         Vec3 y;
         double w;
-        if (!quad.sample_band(d0, d1, shifted(u1, kGolden2, j), shifted(u2, kGolden3, j), y, w)) continue;
+        const BandShift shift(edge0);
+        if (!quad.sample_band(d0, d1, add_mod1(u1, shift.a), add_mod1(u2, shift.b), y, w)) continue;
         const Vec3 v = y - p;
         const float d2 = dot(v, v);
         if (!(d2 > 0)) continue;

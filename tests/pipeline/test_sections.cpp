@@ -130,8 +130,13 @@ TEST(Sections, FrameByFrameMatchesSingle) {
     EXPECT_EQ(fbf.stats["photons_traced"].get<int64_t>(), int64_t{frames} * 4 * 20000);
 }
 
-// With start_ns = 0 nothing arrives before the start, so the pulse frames (width one frame) sum,
-// pixel by pixel, to the last constant frame of a render with the same seed.
+// With start_ns = 0 nothing arrives before the start, so the pulse frames (width one frame) sum
+// to the last constant frame of a render with the same seed: the same photons and camera paths,
+// all but the lamp's direct light, which a pulse takes frame by frame (direct_by_frames.h). The
+// sum then holds exactly where the lamp's light arrives within one frame, and within the
+// lamp's sampling noise elsewhere; the image's mean within 1 % (measured: 0.14 %, and 66 % of
+// the values exact). (One convergence assembled both
+// ways, which holds exactly everywhere: EmissionModes.PulseFramesSumToLastConstantFrame...)
 TEST(Sections, PulseFramesSumToLastConstantFrame) {
     ScratchDir dir;
     const int frames = 6;
@@ -140,19 +145,22 @@ TEST(Sections, PulseFramesSumToLastConstantFrame) {
     ASSERT_EQ(constant.frames.size(), static_cast<size_t>(frames));
     ASSERT_EQ(pulse.frames.size(), static_cast<size_t>(frames));
     const std::vector<float>& last = constant.frames.back().rgb;
-    size_t bad = 0;
-    double worst = 0;
+    size_t exact = 0;
+    double total_sum = 0, total_last = 0;
     for (size_t i = 0; i < last.size(); ++i) {
         double sum = 0, sum_abs = 0;
         for (const ExrSummary& f : pulse.frames) sum += f.rgb[i], sum_abs += std::abs(f.rgb[i]);
         // Each frame is rounded to float once, and the sum of F of them: a few ulps of the parts.
         const double tol = 1e-5 * (sum_abs + std::abs(last[i])) + 1e-12;
-        const double err = std::abs(sum - last[i]);
-        if (err > tol) ++bad;
-        if (sum_abs > 0) worst = std::max(worst, err / sum_abs);
+        if (std::abs(sum - last[i]) <= tol) ++exact;
+        total_sum += sum;
+        total_last += last[i];
     }
-    RecordProperty("worst_rel_error", std::to_string(worst));
-    EXPECT_EQ(bad, 0u) << "worst relative error " << worst;
+    RecordProperty("exact_share", std::to_string(double(exact) / last.size()));
+    RecordProperty("mean_rel_diff", std::to_string(total_sum / total_last - 1));
+    EXPECT_NEAR(total_sum, total_last, 0.01 * total_last);
+    // The lamp's light reaches some pixels within one frame (1 ns here): not every value moved.
+    EXPECT_GT(exact, 0u);
     // Pulse frames are not the constant ones: the later ones hold only the light of their frame.
     EXPECT_LT(pulse.frames.back().mean, 0.5 * constant.frames.back().mean);
 }
