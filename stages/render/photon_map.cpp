@@ -35,10 +35,12 @@ struct PhotonPath {
     const bool drop_early = layout.carried && !ctx.render.camera_tof;
     bool early(double t) const { return drop_early && ctx.timeline.bucket(t) < layout.first_bucket; }
     const bool single_by_photons = ctx.single_scatter_by_photons;
+    const BucketFinder bucket{ctx.timeline};
 
     void store(Vec3 p, Vec3 flux, Vec3 ns, Vec3 d, int depth, double t) {
+        const int64_t j = std::clamp<int64_t>(bucket(t), -(int64_t(1) << 30), int64_t(1) << 30);
         out.push_back({p.x, p.y, p.z, flux.x, flux.y, flux.z, encode_normal(ns), encode_normal(-d),
-                       static_cast<uint32_t>(depth), 0, t});
+                       static_cast<uint32_t>(depth), static_cast<int32_t>(j), t});
     }
 
     void trace(Rng& rng) { trace_from(ctx.lights.emit(rng), rng); }

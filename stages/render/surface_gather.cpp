@@ -123,6 +123,7 @@ uint32_t gather_with(const RenderContext& ctx, const VisiblePoint& vp, const Pho
     // (a tenth of the radius) lets curved surfaces of curvature radius above ~5 R through.
     const float slack = 0.1f * static_cast<float>(std::sqrt(gather_r2));
     uint32_t found = 0;
+    const bool no_camera_leg = vp.camera_ns == 0;  // the photon's own bucket (PhotonRecord::bucket)
     photons.for_each_near(p.x, p.y, p.z, static_cast<float>(gather_r2), [&](const PhotonRecord& ph) {
         // cos(angle) < kSameSurface, without normalising the decoded normal.
         const Vec3 pn = decode_normal_unnormalized(ph.normal);
@@ -137,7 +138,7 @@ uint32_t gather_with(const RenderContext& ctx, const VisiblePoint& vp, const Pho
         if (!blockers.visible(q)) return;
         if (star && !star->keeps(dot(v, star_t), dot(v, star_b), star_r)) return;
         ++found;
-        const int s = layout.slot_of_bucket(bucket(ph.t_ns + vp.camera_ns));
+        const int s = layout.slot_of_bucket(no_camera_leg ? ph.bucket : bucket(ph.t_ns + vp.camera_ns));
         if (s < 0) return;
         add(s, ph);
     });
