@@ -137,5 +137,39 @@ TEST(DirectByFrames, OneSampleOfTheWholeLampGivesTheSameFramesOnAverage) {
     }
 }
 
+TEST(DirectByFrames, ALampOnTheFloorStaysFinite) {
+    // The lamp 1 mm over the floor, its edges at the pixels' points (d -> 0, grazing cosines),
+    // frames of 0.05 ns: every value finite and non-negative, and light in the frames.
+    SceneDesc s = flash_over_floor(16, 1);
+    s.lights[0].corner = Vec3(0.5f, 0.001f, -0.25f);  // under the camera's view
+    s.time = {0, 0.05 * kFrames, kFrames, 24};
+    const test::Rendered r = test::render_all(s);
+    double total = 0;
+    for (int k = 0; k < kFrames; ++k) {
+        for (float v : r.frames[k]) ASSERT_TRUE(std::isfinite(v) && v >= 0) << "frame " << k;
+        total += frame_mean(r.frames[k]);
+    }
+    EXPECT_GT(total, 0.0);
+}
+
+TEST(DirectByFrames, AFlashSpreadOverMoreThanItsBandsIsTheOneSample) {
+    // Frames of 2 ps: the lamp's light reaches each floor point over 1.2 ns or more, far more
+    // than kMaxFrameBands frames, so it is one sample of the whole lamp, exactly as with the
+    // switch off.
+    auto scene = [] {
+        SceneDesc s = flash_over_floor(8, 1);
+        s.time = {3.0, 3.0 + 2e-3 * kFrames, kFrames, 24};
+        return s;
+    };
+    const test::Rendered on = test::render_all(scene());
+    const test::Rendered off = test::render_switched(scene(), [](RenderContext& ctx) { ctx.pulse_direct_by_frames = false; });
+    double lit = 0;
+    for (int k = 0; k < kFrames; ++k) {
+        EXPECT_EQ(on.frames[k], off.frames[k]) << "frame " << k;
+        lit += frame_mean(on.frames[k]);
+    }
+    EXPECT_GT(lit, 0.0);  // some light arrives in these 80 ps
+}
+
 }  // namespace
 }  // namespace sl
