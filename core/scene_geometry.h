@@ -50,6 +50,18 @@ public:
     bool intersect(Vec3 o, Vec3 d, float tnear, float tfar, SurfaceHit& hit) const;
     // True when anything blocks o + t d for t in (tnear, tfar).
     bool occluded(Vec3 o, Vec3 d, float tnear, float tfar) const;
+    // True when anything blocks the way from `origin` (a point lifted off its surface, ray_epsilon)
+    // to `target` (a point on a light): aimed from the origin itself and stopped 1e-4 of that
+    // length short of the target, so that the light's own surface is never met. Measured from the
+    // unlifted point instead, the lift (about 2e-5 m three metres from the camera) outgrew the
+    // margin on every surface parallel to a quad lamp within about 0.2 m of it, whatever the
+    // angle, and all its direct light was lost (a floor under a low lamp rendered black).
+    bool occluded_to(Vec3 origin, Vec3 target) const {
+        const Vec3 v = target - origin;
+        const float len = length(v);
+        if (!(len > 0)) return false;
+        return occluded(origin, v / len, 0, len * (1 - 1e-4f));
+    }
     // The distance from c to the nearest surface reaching higher than `height` above the plane
     // through p with unit normal n, or `radius` when there is none nearer: no ray from c of
     // length below it that stays above that height can hit anything. One BVH traversal (a point

@@ -470,7 +470,7 @@ struct PixelTracer {
             // after its end) would drop it: no shadow ray is needed to find that out.
             if (buffer.layout.slot_of_bucket(ctx.timeline.bucket(t)) < 0) continue;
             ++rays;
-            if (ctx.geometry.occluded(origin, s.to_light, 0, s.distance * (1 - 1e-4f))) continue;
+            if (ctx.geometry.occluded_to(origin, p + s.to_light * s.distance)) continue;
             Vec3 e = s.irradiance;
             if (medium) e *= medium->transmittance(origin, s.to_light, s.distance);
             deposit(buffer, deposits, ctx.timeline, local, t, weight(s.to_light, s.pdf) * e);

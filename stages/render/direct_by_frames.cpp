@@ -71,7 +71,7 @@ bool quad_direct_by_frames(const RenderContext& ctx, size_t light, Vec3 p, Vec3 
         Vec3 e = radiance * static_cast<float>(cos_l * cos_p / d2 * w);
         if (is_black(e) || !is_finite(e)) continue;
         ++rays;
-        if (ctx.geometry.occluded(origin, wi, 0, d * (1 - 1e-4f))) continue;
+        if (ctx.geometry.occluded_to(origin, y)) continue;
         if (ctx.medium) e *= ctx.medium->transmittance(origin, wi, d);
         const Vec3 L = f * e;
         deposits.add(buffer.slot(pixel, slot), L.x, L.y, L.z);
