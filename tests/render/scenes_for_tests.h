@@ -36,6 +36,12 @@ inline SceneDesc looking_down_at_grey(const char* source, int res, float half_vi
     return s;
 }
 
+// A quad lamp corner + u e1 + v e2 of the given radiance, its front edge1 x edge2.
+inline LightDesc quad_light(Vec3 corner, Vec3 e1, Vec3 e2, float radiance) {
+    return LightDesc{.type = LightType::Quad, .position = {}, .corner = corner, .edge1 = e1, .edge2 = e2,
+                     .power = {}, .radiance = Vec3(radiance), .irradiance = {}};
+}
+
 // A laser beam of radius `radius` (its flux spread evenly over the disc) from p along unit d.
 inline LightDesc laser(Vec3 p, Vec3 d, float radius, float power) {
     LightDesc l;

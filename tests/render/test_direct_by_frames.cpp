@@ -27,13 +27,7 @@ SceneDesc flash_over_floor(int passes, uint64_t seed) {
     s.camera.position = {1.0f, 3, 0};
     s.camera.look_at = {1.0f, 0, 0};
     s.shapes.push_back(test::quad({-3, 0, 3}, {6, 0, 0}, {0, 0, -6}));
-    LightDesc l;
-    l.type = LightType::Quad;
-    l.corner = kCorner;
-    l.edge1 = kE1;
-    l.edge2 = kE2;
-    l.radiance = Vec3(kRadiance);
-    s.lights.push_back(l);
+    s.lights.push_back(test::quad_light(kCorner, kE1, kE2, kRadiance));
     s.time = {0, 0.2 * kFrames, kFrames, 24};
     s.emission.mode = EmissionMode::Pulse;
     s.render.max_depth = 1;

@@ -123,13 +123,8 @@ TEST(DirectLightAnalytic, AFloorUnderALowLampGetsItsLight) {
         s.camera.position = {1.0f, 3, 0};  // the floor from x = 0.4 to 1.6 m: beside the lamp
         s.camera.look_at = {1.0f, 0, 0};
         s.shapes.push_back(test::quad({-3, 0, 3}, {6, 0, 0}, {0, 0, -6}));
-        LightDesc l;
-        l.type = LightType::Quad;
-        l.corner = {x0, h, z0};
-        l.edge1 = {x1 - x0, 0, 0};
-        l.edge2 = {0, 0, z1 - z0};  // edge1 x edge2 faces down, onto the floor
-        l.radiance = Vec3(L);
-        s.lights.push_back(l);
+        // edge1 x edge2 faces down, onto the floor
+        s.lights.push_back(test::quad_light({x0, h, z0}, {x1 - x0, 0, 0}, {0, 0, z1 - z0}, L));
         s.render.max_depth = 1;
         s.render.passes = 128;
         s.render.photons_per_pass = 1000;
